@@ -1,0 +1,38 @@
+#!/usr/bin/env bash
+# Installs every Debian package that PRM's build, tests, benches and demo need.
+# Non-interactive, idempotent (skips what is installed), Debian 12; run as root or with sudo available.
+# Nothing is fetched from anywhere but Debian's package archive.
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config git ca-certificates
+  clang libclang-rt-14-dev            # libFuzzer and the sanitizer runtime for clang builds
+  libgtest-dev libgmock-dev libbenchmark-dev
+  libdraco-dev draco                  # the baseline we compare against
+  libtinygltf-dev nlohmann-json3-dev libstb-dev   # glTF I/O (compiled privately), JSON output, PNG writing
+  libtinyobjloader-dev                # OBJ reading
+  libcli11-dev                        # the command line
+  libtbb-dev                          # parallel loops in the remesher and the metric
+  libopenmesh-dev                     # half-edge mesh for the remesher's collapses and flips
+  libcgal-demo                        # CGAL's data set: real meshes for tests and benches
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "setup: all ${#packages[@]} packages are installed"
+  exit 0
+fi
+
+echo "setup: installing ${#missing[@]} missing packages: ${missing[*]}"
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+echo "setup: done"
