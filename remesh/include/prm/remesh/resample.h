@@ -1,0 +1,63 @@
+// Paper §2.2-2.4: hexagonal resampling of the reliefs and their merging into one piecewise regular mesh.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "prm/mesh.h"
+#include "prm/remesh/lattice.h"
+
+namespace prm::remesh {
+
+// A relief layout: a refined mesh whose faces are labelled by relief (see reliefs.h for how it is built).
+struct LayoutInput {
+  const Mesh* refined = nullptr;                      // closed 2-manifold
+  const std::vector<int32_t>* face_relief = nullptr;  // relief id per refined face
+  const std::vector<int>* relief_axis = nullptr;      // axis (0..5) per relief id
+  const std::vector<int32_t>* source_face = nullptr;  // input face per refined face (null: the refined faces)
+  const Mesh* input = nullptr;                        // the input mesh (reference normals); null: refined
+};
+
+struct ResampleOptions {
+  QuantFrame frame;
+  int64_t grid = 0;                    // grid size A in quantization steps (>= 2)
+  double max_normal_angle_deg = 90.0;  // paper: no triangle may turn more than 90 degrees away
+  bool parallel = true;                // resample reliefs concurrently
+};
+
+struct ResampleStats {
+  size_t reliefs = 0;
+  size_t generic_moves = 0;        // vertices nudged off grid lines (by less than 1e-5 quantization steps)
+  size_t sliced_vertices = 0, sliced_faces = 0;
+  size_t collapses = 0, cell_flips = 0, stuck = 0;
+  size_t fill_triangles = 0, loops_broken = 0;
+  size_t seam_collapses = 0, area_flips = 0, repairs = 0, unrepaired = 0;
+  size_t vertices = 0, faces = 0, regular_faces = 0, lattice_vertices = 0;
+  double seconds_slice = 0, seconds_merge = 0;
+};
+
+// The piecewise regular mesh and its labels.
+struct PrmMesh {
+  Mesh mesh;  // positions, and the properties/comments of docs/ARCHITECTURE.md "The PRM file"
+  QuantFrame frame;
+  HexLattice lattice;
+  std::vector<int> relief_axis;         // per relief id
+  std::vector<int32_t> vertex_relief;   // relief of a grid vertex, -1 otherwise
+  std::vector<int32_t> lattice_i, lattice_j;
+  std::vector<int32_t> face_relief;     // relief of the face's grid vertices when all agree, -1 otherwise
+  std::vector<uint8_t> face_regular;    // projects onto a grid triangle of its relief
+  ResampleStats stats;
+};
+
+PrmMesh resample_and_merge(const LayoutInput& layout, const ResampleOptions& options);
+
+// Attaches the labels as PLY properties and comments (docs/ARCHITECTURE.md) / reads them back.
+void store_prm_labels(PrmMesh& prm);
+PrmMesh load_prm_labels(Mesh mesh);  // throws prm::InputError when the labels are missing or inconsistent
+
+// Is triangle (a, b, c), given by lattice coordinates, a grid triangle facing `axis` in this vertex order?
+bool is_grid_triangle(int axis, const std::array<int64_t, 2>& a, const std::array<int64_t, 2>& b,
+                      const std::array<int64_t, 2>& c);
+
+}  // namespace prm::remesh

@@ -1,0 +1,35 @@
+// Paper §2.3, first step: the resampled reliefs are joined into one closed manifold. Along every edge pq of the
+// refined mesh that separates two reliefs, the vertices each relief put on pq form a loop p -> (relief 1) -> q ->
+// (relief 2) -> p; it is filled with zero-area triangles, and where the two reliefs share a vertex on pq (the same
+// grid plane cut pq for both) the loop is broken there, so that no loop passes through a vertex twice.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "relief_mesh.h"
+#include "relief_resampling.h"
+
+namespace prm::remesh {
+
+struct MergedVertex {
+  Vec3 position{0, 0, 0};
+  bool lattice = false;     // a grid vertex of relief `relief`
+  int32_t relief = -1;      // the relief the vertex came from; -1 for refined vertices shared by several reliefs
+  int64_t i = 0, j = 0;     // lattice coordinates (lattice vertices)
+  int32_t source_face = -1; // input face the vertex lies on
+};
+
+struct MergedMesh {
+  std::vector<MergedVertex> vertices;
+  std::vector<std::array<int32_t, 3>> faces;
+  std::vector<int32_t> face_relief;  // the relief a face came from; -1 for loop-fill triangles
+  size_t fill_triangles = 0;
+  size_t loops_broken = 0;
+};
+
+// reliefs[r] is the resampled relief r of the view's refined mesh.
+MergedMesh merge_reliefs(const ReliefMeshView& view, const std::vector<ResampledRelief>& reliefs);
+
+}  // namespace prm::remesh

@@ -1,0 +1,264 @@
+// Paper §2.2-2.4 in sequence: genericity nudge, per-relief slicing and constrained collapses (in parallel), loop fill,
+// seam optimization, labels.
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <numeric>
+#include <sstream>
+#include <stdexcept>
+
+#include "loop_fill.h"
+#include "prm/error.h"
+#include "prm/progress.h"
+#include "prm/remesh/resample.h"
+#include "prm/vec3.h"
+#include "relief_mesh.h"
+#include "relief_resampling.h"
+#include "relief_slicing.h"
+#include "seam_optimization.h"
+
+namespace prm::remesh {
+
+bool is_grid_triangle(int axis, const std::array<int64_t, 2>& a, const std::array<int64_t, 2>& b,
+                      const std::array<int64_t, 2>& c) {
+  auto neighbours = [](const std::array<int64_t, 2>& p, const std::array<int64_t, 2>& q) {
+    const int64_t di = q[0] - p[0], dj = q[1] - p[1];
+    return (std::abs(di) + std::abs(dj) == 1) || (di == 1 && dj == -1) || (di == -1 && dj == 1);
+  };
+  if (!neighbours(a, b) || !neighbours(b, c) || !neighbours(c, a)) return false;
+  const int64_t o = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);
+  return axis_sign(axis) > 0 ? o == 1 : o == -1;
+}
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+std::vector<Vec3> unit_face_normals(const Mesh& m) {
+  std::vector<Vec3> n(m.triangles.size());
+  for (size_t f = 0; f < n.size(); ++f) {
+    const Tri& t = m.triangles[f];
+    n[f] = normalized(triangle_normal_area2(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]));
+  }
+  return n;
+}
+
+}  // namespace
+
+PrmMesh resample_and_merge(const LayoutInput& layout, const ResampleOptions& options) {
+  if (!layout.refined || !layout.face_relief || !layout.relief_axis)
+    throw std::invalid_argument("resample_and_merge: incomplete layout");
+  const auto t0 = std::chrono::steady_clock::now();
+  PrmMesh prm;
+  prm.frame = options.frame;
+  prm.lattice = HexLattice::with_grid(options.grid);
+  prm.relief_axis = *layout.relief_axis;
+  ResampleStats& st = prm.stats;
+  st.reliefs = layout.relief_axis->size();
+
+  Mesh refined = *layout.refined;
+  const auto& face_relief = *layout.face_relief;
+  if (face_relief.size() != refined.triangles.size()) throw std::invalid_argument("face_relief has the wrong size");
+  for (int32_t r : face_relief)
+    if (r < 0 || static_cast<size_t>(r) >= st.reliefs) throw std::invalid_argument("face_relief out of range");
+
+  const auto adjacency = face_adjacency(refined);
+  for (const auto& a : adjacency)
+    for (int32_t g : a)
+      if (g < 0) throw InputError("the mesh has a boundary: close its holes first (prm repair)");
+  st.generic_moves = make_generic(refined, face_relief, prm.relief_axis, adjacency, prm.frame, prm.lattice);
+
+  ReliefMeshView view;
+  view.mesh = &refined;
+  view.face_relief = &face_relief;
+  view.relief_axis = &prm.relief_axis;
+  view.source_face = layout.source_face;
+  view.frame = prm.frame;
+  view.lattice = prm.lattice;
+  prepare_view(view);
+
+  // Reliefs are independent: slice and collapse them in parallel, largest first.
+  std::vector<std::vector<int32_t>> relief_faces(st.reliefs);
+  for (size_t f = 0; f < face_relief.size(); ++f) relief_faces[static_cast<size_t>(face_relief[f])].push_back(static_cast<int32_t>(f));
+  std::vector<size_t> order(st.reliefs);
+  std::iota(order.begin(), order.end(), 0);
+  std::sort(order.begin(), order.end(), [&](size_t a, size_t b) { return relief_faces[a].size() > relief_faces[b].size(); });
+  std::vector<ResampledRelief> resampled(st.reliefs);
+  {
+    Progress progress("remesh: resampling reliefs", face_relief.size());
+    std::atomic<size_t> done{0};
+    auto work = [&](size_t k) {
+      const size_t r = order[k];
+      if (relief_faces[r].empty()) return;
+      const SlicedRelief sliced = slice_relief(view, relief_faces[r], prm.relief_axis[r]);
+      resampled[r] = resample_relief(sliced, prm.relief_axis[r]);
+      done += relief_faces[r].size();
+    };
+    if (options.parallel) {
+      tbb::parallel_for(size_t{0}, order.size(), [&](size_t k) { work(k); });
+    } else {
+      for (size_t k = 0; k < order.size(); ++k) {
+        work(k);
+        progress.set(done);
+      }
+    }
+    progress.finish();
+  }
+  for (const ResampledRelief& r : resampled) {
+    st.sliced_vertices += r.sliced_vertices;
+    st.sliced_faces += r.sliced_faces;
+    st.collapses += r.collapses;
+    st.cell_flips += r.flips;
+    st.stuck += r.stuck;
+  }
+  st.seconds_slice = seconds_since(t0);
+
+  const auto t1 = std::chrono::steady_clock::now();
+  MergedMesh merged = merge_reliefs(view, resampled);
+  resampled.clear();
+  st.fill_triangles = merged.fill_triangles;
+  st.loops_broken = merged.loops_broken;
+  const Mesh& input = layout.input ? *layout.input : *layout.refined;
+  const std::vector<Vec3> normals = unit_face_normals(input);
+  SeamOptions so;
+  so.max_normal_angle_deg = options.max_normal_angle_deg;
+  so.grid_length = static_cast<double>(prm.lattice.A) * prm.frame.step;
+  const SeamStats ss = optimize_seams(merged, normals, so);
+  st.seam_collapses = ss.boundary_collapses;
+  st.area_flips = ss.area_flips;
+  st.repairs = ss.repairs;
+  st.unrepaired = ss.unrepaired;
+  st.seconds_merge = seconds_since(t1);
+
+  // Output and labels.
+  const size_t nv = merged.vertices.size(), nf = merged.faces.size();
+  prm.mesh.positions.resize(nv);
+  prm.vertex_relief.assign(nv, -1);
+  prm.lattice_i.assign(nv, 0);
+  prm.lattice_j.assign(nv, 0);
+  for (size_t v = 0; v < nv; ++v) {
+    const MergedVertex& mv = merged.vertices[v];
+    prm.mesh.positions[v] = mv.position;
+    if (mv.lattice) {
+      prm.vertex_relief[v] = mv.relief;
+      prm.lattice_i[v] = static_cast<int32_t>(mv.i);
+      prm.lattice_j[v] = static_cast<int32_t>(mv.j);
+      ++st.lattice_vertices;
+    }
+  }
+  prm.mesh.triangles.resize(nf);
+  prm.face_relief.assign(nf, -1);
+  prm.face_regular.assign(nf, 0);
+  for (size_t f = 0; f < nf; ++f) {
+    const auto& t = merged.faces[f];
+    prm.mesh.triangles[f] = {static_cast<uint32_t>(t[0]), static_cast<uint32_t>(t[1]), static_cast<uint32_t>(t[2])};
+    const int32_t r = prm.vertex_relief[static_cast<size_t>(t[0])];
+    if (r < 0 || prm.vertex_relief[static_cast<size_t>(t[1])] != r || prm.vertex_relief[static_cast<size_t>(t[2])] != r)
+      continue;
+    prm.face_relief[f] = r;
+    auto ij = [&](int32_t v) {
+      return std::array<int64_t, 2>{prm.lattice_i[static_cast<size_t>(v)], prm.lattice_j[static_cast<size_t>(v)]};
+    };
+    if (is_grid_triangle(prm.relief_axis[static_cast<size_t>(r)], ij(t[0]), ij(t[1]), ij(t[2]))) {
+      prm.face_regular[f] = 1;
+      ++st.regular_faces;
+    }
+  }
+  st.vertices = nv;
+  st.faces = nf;
+  store_prm_labels(prm);
+  return prm;
+}
+
+void store_prm_labels(PrmMesh& prm) {
+  auto as_double = [](const auto& v) { return std::vector<double>(v.begin(), v.end()); };
+  Mesh& m = prm.mesh;
+  m.set_vertex_property("relief", ScalarType::Int32, as_double(prm.vertex_relief));
+  m.set_vertex_property("lattice_i", ScalarType::Int32, as_double(prm.lattice_i));
+  m.set_vertex_property("lattice_j", ScalarType::Int32, as_double(prm.lattice_j));
+  m.set_face_property("relief", ScalarType::Int32, as_double(prm.face_relief));
+  m.set_face_property("regular", ScalarType::UInt8, as_double(prm.face_regular));
+  // Colours for viewing: regular triangles tinted by relief axis, irregular ones dark red.
+  static const double palette[6][3] = {{230, 120, 120}, {120, 200, 120}, {120, 150, 230},
+                                       {230, 200, 110}, {200, 130, 220}, {110, 210, 210}};
+  std::vector<double> red(m.triangles.size()), green(m.triangles.size()), blue(m.triangles.size());
+  for (size_t f = 0; f < m.triangles.size(); ++f) {
+    if (prm.face_regular[f]) {
+      const int axis = prm.relief_axis[static_cast<size_t>(prm.face_relief[f])];
+      red[f] = palette[axis][0];
+      green[f] = palette[axis][1];
+      blue[f] = palette[axis][2];
+    } else {
+      red[f] = 150;
+      green[f] = 30;
+      blue[f] = 30;
+    }
+  }
+  m.set_face_property("red", ScalarType::UInt8, std::move(red));
+  m.set_face_property("green", ScalarType::UInt8, std::move(green));
+  m.set_face_property("blue", ScalarType::UInt8, std::move(blue));
+  m.comments.erase(std::remove_if(m.comments.begin(), m.comments.end(),
+                                  [](const std::string& c) { return c.rfind("prm-", 0) == 0; }),
+                   m.comments.end());
+  char buf[256];
+  std::snprintf(buf, sizeof buf, "prm-frame bits %d origin %.17g %.17g %.17g step %.17g grid %lld", prm.frame.bits,
+                prm.frame.origin[0], prm.frame.origin[1], prm.frame.origin[2], prm.frame.step,
+                static_cast<long long>(prm.lattice.A));
+  m.comments.push_back(buf);
+  for (size_t r = 0; r < prm.relief_axis.size(); ++r)
+    m.comments.push_back("prm-relief " + std::to_string(r) + " axis " + std::to_string(prm.relief_axis[r]));
+}
+
+PrmMesh load_prm_labels(Mesh mesh) {
+  PrmMesh prm;
+  bool have_frame = false;
+  long long grid = 0;
+  for (const std::string& c : mesh.comments) {
+    std::istringstream in(c);
+    std::string tag;
+    in >> tag;
+    if (tag == "prm-frame") {
+      std::string k1, k2, k3, k4;
+      in >> k1 >> prm.frame.bits >> k2 >> prm.frame.origin[0] >> prm.frame.origin[1] >> prm.frame.origin[2] >> k3 >>
+          prm.frame.step >> k4 >> grid;
+      if (!in || k1 != "bits" || k2 != "origin" || k3 != "step" || k4 != "grid" || prm.frame.bits < 8 ||
+          prm.frame.bits > 20 || !(prm.frame.step > 0) || grid < 2)
+        throw InputError("malformed 'prm-frame' comment: " + c);
+      have_frame = true;
+    } else if (tag == "prm-relief") {
+      long long id = -1;
+      std::string k;
+      int axis = -1;
+      in >> id >> k >> axis;
+      if (!in || k != "axis" || id < 0 || id > 1000000 || axis < 0 || axis > 5)
+        throw InputError("malformed 'prm-relief' comment: " + c);
+      if (prm.relief_axis.size() <= static_cast<size_t>(id)) prm.relief_axis.resize(static_cast<size_t>(id) + 1, -1);
+      prm.relief_axis[static_cast<size_t>(id)] = axis;
+    }
+  }
+  if (!have_frame) throw InputError("not a PRM file: the 'prm-frame' comment is missing (run prm remesh first)");
+  prm.lattice = HexLattice::with_grid(grid);
+  auto column = [&](const Property* p, const char* what) -> const std::vector<double>& {
+    if (!p) throw InputError(std::string("not a PRM file: the property '") + what + "' is missing");
+    return p->values;
+  };
+  const auto& vr = column(mesh.find_vertex_property("relief"), "vertex relief");
+  const auto& li = column(mesh.find_vertex_property("lattice_i"), "lattice_i");
+  const auto& lj = column(mesh.find_vertex_property("lattice_j"), "lattice_j");
+  prm.vertex_relief.assign(vr.begin(), vr.end());
+  prm.lattice_i.assign(li.begin(), li.end());
+  prm.lattice_j.assign(lj.begin(), lj.end());
+  for (int32_t r : prm.vertex_relief)
+    if (r < -1 || (r >= 0 && (static_cast<size_t>(r) >= prm.relief_axis.size() || prm.relief_axis[static_cast<size_t>(r)] < 0)))
+      throw InputError("vertex relief label " + std::to_string(r) + " has no 'prm-relief' comment");
+  if (const Property* fr = mesh.find_face_property("relief")) prm.face_relief.assign(fr->values.begin(), fr->values.end());
+  if (const Property* rg = mesh.find_face_property("regular")) prm.face_regular.assign(rg->values.begin(), rg->values.end());
+  prm.mesh = std::move(mesh);
+  return prm;
+}
+
+}  // namespace prm::remesh

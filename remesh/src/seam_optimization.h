@@ -1,0 +1,31 @@
+// Paper §2.3-2.4 after the loop fill: vertices on relief boundaries are collapsed onto grid vertices (never changing
+// the topology), edges joining vertices of different reliefs are flipped while that reduces the area, and the
+// triangles that end up flipped (normal more than 90 degrees from the input surface's nearby normal) or with zero
+// area are removed by local collapses and flips.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include "loop_fill.h"
+
+namespace prm::remesh {
+
+struct SeamOptions {
+  double max_normal_angle_deg = 90.0;  // a triangle is flipped beyond this angle from the reference normal
+  double grid_length = 1.0;            // the grid size in model units (sets the zero-area tolerance)
+};
+
+struct SeamStats {
+  size_t boundary_collapses = 0;
+  size_t area_flips = 0;
+  size_t repairs = 0;             // collapses and flips that removed flipped or zero-area triangles
+  size_t unrepaired = 0;          // flipped or zero-area triangles left (0 on success)
+  size_t non_lattice_vertices = 0;
+};
+
+// input_normals: unit normal of every input face (MergedVertex::source_face indexes it).
+// On return, mesh has no deleted elements: vertices and faces are compacted.
+SeamStats optimize_seams(MergedMesh& mesh, const std::vector<Vec3>& input_normals, const SeamOptions& options);
+
+}  // namespace prm::remesh
