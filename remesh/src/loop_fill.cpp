@@ -1,7 +1,6 @@
 #include "loop_fill.h"
 
 #include <algorithm>
-#include <numeric>
 #include <unordered_map>
 
 namespace prm::remesh {
@@ -64,10 +63,6 @@ MergedMesh merge_reliefs(const ReliefMeshView& view, const std::vector<Resampled
     }
   }
 
-  // Vertices of two reliefs of one axis pair cut by the same grid plane coincide: one vertex (breaks the loop).
-  std::vector<int32_t> same(out.vertices.size());
-  std::iota(same.begin(), same.end(), 0);
-
   std::vector<std::pair<double, int32_t>> xs, ys;
   for (size_t f = 0; f < mesh.triangles.size(); ++f) {
     const int32_t r1 = view.relief(static_cast<int32_t>(f));
@@ -90,16 +85,16 @@ MergedMesh merge_reliefs(const ReliefMeshView& view, const std::vector<Resampled
         }
       std::sort(xs.begin(), xs.end());
       std::sort(ys.begin(), ys.end());
+      // Two reliefs of one axis pair share the grid planes: their vertices on ab coincide where the same plane
+      // cuts it. They stay distinct here (a zero-length rung of the loop); optimize_seams() merges each such
+      // pair when the link condition allows, which breaks the loop there.
       const bool shared_lattice = axis_pair((*view.relief_axis)[static_cast<size_t>(r1)]) ==
                                   axis_pair((*view.relief_axis)[static_cast<size_t>(r2)]);
-      if (shared_lattice && it != seams.end()) {
+      if (shared_lattice && it != seams.end())
         for (const SeamPoint& p : it->second)
           for (const SeamPoint& q : it->second)
-            if (p.relief == r1 && q.relief == r2 && p.family == q.family && p.value == q.value) {
-              same[static_cast<size_t>(q.vertex)] = p.vertex;
-              ++out.loops_broken;
-            }
-      }
+            if (p.relief == r1 && q.relief == r2 && p.family == q.family && p.value == q.value)
+              out.coincident.push_back({p.vertex, q.vertex});
       const int32_t pa = refined_to_merged[static_cast<size_t>(a)], pb = refined_to_merged[static_cast<size_t>(b)];
       std::vector<int32_t> X{pa}, Y{pa};
       std::vector<double> tx{0.0}, ty{0.0};
@@ -108,7 +103,7 @@ MergedMesh merge_reliefs(const ReliefMeshView& view, const std::vector<Resampled
         tx.push_back(p.first);
       }
       for (const auto& p : ys) {
-        Y.push_back(same[static_cast<size_t>(p.second)]);
+        Y.push_back(p.second);
         ty.push_back(p.first);
       }
       X.push_back(pb);
@@ -136,8 +131,6 @@ MergedMesh merge_reliefs(const ReliefMeshView& view, const std::vector<Resampled
       }
     }
   }
-  for (auto& f : out.faces)
-    for (auto& v : f) v = same[static_cast<size_t>(v)];
   return out;
 }
 

@@ -1,7 +1,9 @@
 // Paper §2.3, first step: the resampled reliefs are joined into one closed manifold. Along every edge pq of the
 // refined mesh that separates two reliefs, the vertices each relief put on pq form a loop p -> (relief 1) -> q ->
-// (relief 2) -> p; it is filled with zero-area triangles, and where the two reliefs share a vertex on pq (the same
-// grid plane cut pq for both) the loop is broken there, so that no loop passes through a vertex twice.
+// (relief 2) -> p, filled with zero-area triangles. Where both reliefs put a vertex at the same point of pq (the same
+// grid plane cut pq for both: reliefs of one axis pair), the pair is recorded; optimize_seams() merges it when that
+// keeps the mesh manifold, which breaks the loop into two that each pass through a vertex once. (Merging them
+// unconditionally is wrong at folds, where the two reliefs overlap in projection and share a grid edge.)
 #pragma once
 
 #include <array>
@@ -25,8 +27,8 @@ struct MergedMesh {
   std::vector<MergedVertex> vertices;
   std::vector<std::array<int32_t, 3>> faces;
   std::vector<int32_t> face_relief;  // the relief a face came from; -1 for loop-fill triangles
+  std::vector<std::pair<int32_t, int32_t>> coincident;  // vertex pairs at one point of a seam (see above)
   size_t fill_triangles = 0;
-  size_t loops_broken = 0;
 };
 
 // reliefs[r] is the resampled relief r of the view's refined mesh.

@@ -121,13 +121,13 @@ PrmMesh resample_and_merge(const LayoutInput& layout, const ResampleOptions& opt
   MergedMesh merged = merge_reliefs(view, resampled);
   resampled.clear();
   st.fill_triangles = merged.fill_triangles;
-  st.loops_broken = merged.loops_broken;
   const Mesh& input = layout.input ? *layout.input : *layout.refined;
   const std::vector<Vec3> normals = unit_face_normals(input);
   SeamOptions so;
   so.max_normal_angle_deg = options.max_normal_angle_deg;
   so.grid_length = static_cast<double>(prm.lattice.A) * prm.frame.step;
   const SeamStats ss = optimize_seams(merged, normals, so);
+  st.loops_broken = ss.loops_broken;
   st.seam_collapses = ss.boundary_collapses;
   st.area_flips = ss.area_flips;
   st.repairs = ss.repairs;

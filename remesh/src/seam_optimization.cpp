@@ -20,7 +20,8 @@ class SeamOptimizer {
  public:
   SeamOptimizer(MergedMesh& m, const std::vector<Vec3>& normals, const SeamOptions& o)
       : m_(m), normals_(normals), cos_max_(std::cos(o.max_normal_angle_deg * M_PI / 180.0)) {
-    min_area2_ = 1e-12 * o.grid_length * o.grid_length;
+    // Twice the smallest area a triangle may have: a millionth of a grid triangle's size, squared.
+    min_norm_ = 1e-12 * o.grid_length * o.grid_length;
     for (const MergedVertex& v : m.vertices) mesh_.add_vertex(OMesh::Point(v.position[0], v.position[1], v.position[2]));
     for (size_t f = 0; f < m.faces.size(); ++f) {
       const auto& t = m.faces[f];
@@ -31,6 +32,7 @@ class SeamOptimizer {
 
   SeamStats run() {
     SeamStats s;
+    s.loops_broken = merge_coincident();
     s.boundary_collapses = collapse_seam_vertices();
     s.area_flips = reduce_area_by_flips();
     s.repairs = remove_bad_triangles();
@@ -53,7 +55,7 @@ class SeamOptimizer {
   bool triangle_ok(VH a, VH b, VH c, const Vec3& pa, const Vec3& pb, const Vec3& pc) const {
     const Vec3 n = cross(pb - pa, pc - pa);
     const double n2 = norm2(n);
-    if (n2 <= min_area2_) return false;
+    if (n2 <= min_norm_ * min_norm_) return false;
     const Vec3 r = ref_normal(a, b, c);
     return dot(n, r) > cos_max_ * std::sqrt(n2 * norm2(r));
   }
@@ -78,11 +80,46 @@ class SeamOptimizer {
     return true;
   }
 
+  // For repairs: the collapse x -> y removes at least one bad triangle and turns no good triangle bad.
+  bool collapse_improves(HH h) {
+    if (!mesh_.is_collapse_ok(h)) return false;
+    const VH x = mesh_.from_vertex_handle(h), y = mesh_.to_vertex_handle(h);
+    const Vec3 py = pos(y), px = pos(x);
+    int bad_before = 0, bad_after = 0;
+    for (auto oh : mesh_.voh_range(x)) {
+      if (mesh_.is_boundary(oh)) continue;
+      const VH a = mesh_.to_vertex_handle(oh), b = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(oh));
+      const bool ok_before = triangle_ok(x, a, b, px, pos(a), pos(b));
+      bad_before += !ok_before;
+      if (a == y || b == y) continue;
+      const bool ok_after = triangle_ok(y, a, b, py, pos(a), pos(b));
+      if (ok_before && !ok_after) return false;
+      bad_after += !ok_after;
+    }
+    return bad_after < bad_before;
+  }
+
   // How far y lies from x's tangent plane (the error of moving x to y), plus a little of the distance.
   double collapse_cost(VH x, VH y) const {
     const Vec3 d = pos(y) - pos(x);
     const double plane = dot(d, normals_[static_cast<size_t>(mv(x).source_face)]);
     return plane * plane + 1e-3 * norm2(d);
+  }
+
+  // Loop breaking (paper §2.3): a coincident pair of seam vertices becomes one vertex where the link condition
+  // allows. The geometry does not change, so no triangle test is needed.
+  size_t merge_coincident() {
+    size_t merged = 0;
+    for (const auto& [a, b] : m_.coincident) {
+      const VH x(b), y(a);
+      if (mesh_.status(x).deleted() || mesh_.status(y).deleted()) continue;
+      const HH h = mesh_.find_halfedge(x, y);
+      if (h.is_valid() && mesh_.is_collapse_ok(h)) {
+        mesh_.collapse(h);
+        ++merged;
+      }
+    }
+    return merged;
   }
 
   bool best_lattice_target(VH x, HH& best, double& best_cost) {
@@ -191,7 +228,7 @@ class SeamOptimizer {
       for (HH k : {h, mesh_.opposite_halfedge_handle(h)}) {
         const VH x = mesh_.from_vertex_handle(k);
         const int rank = mv(x).lattice ? 1 : 2;
-        if (rank > best_rank && collapse_ok(k)) {
+        if (rank > best_rank && collapse_improves(k)) {
           best = k;
           best_rank = rank;
         }
@@ -253,7 +290,7 @@ class SeamOptimizer {
   MergedMesh& m_;
   const std::vector<Vec3>& normals_;
   double cos_max_;
-  double min_area2_;
+  double min_norm_;
   OMesh mesh_;
 };
 

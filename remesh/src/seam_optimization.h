@@ -17,6 +17,7 @@ struct SeamOptions {
 };
 
 struct SeamStats {
+  size_t loops_broken = 0;        // coincident seam vertex pairs merged
   size_t boundary_collapses = 0;
   size_t area_flips = 0;
   size_t repairs = 0;             // collapses and flips that removed flipped or zero-area triangles
