@@ -91,6 +91,16 @@ class Resampler {
     return true;
   }
 
+  // Boundary corners are shared with the neighbouring reliefs: an edge between two of them created here could
+  // also be created by another relief, and the merged mesh would not be a manifold. Keep such edges out.
+  static bool shared(const SliceVertex& v) { return v.kind == SliceKind::Corner && v.boundary; }
+  bool adds_shared_chord(OMesh::VertexHandle x, OMesh::VertexHandle y) const {
+    if (!shared(sv(y))) return false;
+    for (auto w : mesh_.vv_range(x))
+      if (w != y && shared(sv(w)) && !mesh_.find_halfedge(y, w).is_valid()) return true;
+    return false;
+  }
+
   bool try_collapse(OMesh::VertexHandle x) {
     const SliceVertex& X = sv(x);
     OMesh::HalfedgeHandle best;
@@ -102,7 +112,7 @@ class Resampler {
       // Prefer grid vertices, then vertices on grid edges, then the rest.
       const int rank = Y.kind == SliceKind::Lattice ? 3 : Y.kind == SliceKind::Crossing ? 2 : 1;
       if (rank <= best_rank) continue;
-      if (!mesh_.is_collapse_ok(h) || !collapse_keeps_orientation(x, y)) continue;
+      if (!mesh_.is_collapse_ok(h) || !collapse_keeps_orientation(x, y) || adds_shared_chord(x, y)) continue;
       best = h;
       best_rank = rank;
     }
@@ -126,7 +136,7 @@ class Resampler {
       const auto c1 = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h));
       const auto o = mesh_.opposite_halfedge_handle(h);
       const auto c2 = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(o));
-      if (!mesh_.is_flip_ok(e)) continue;
+      if (!mesh_.is_flip_ok(e) || (shared(sv(c1)) && shared(sv(c2)))) continue;
       // Faces (x, y, c1) and (y, x, c2) become (c1, x, c2) and (c2, y, c1).
       const double q1 = orient(sv(c1), X, sv(c2));
       const double q2 = orient(sv(c2), Y, sv(c1));

@@ -191,9 +191,9 @@ SlicedRelief slice_relief(const ReliefMeshView& view, const std::vector<int32_t>
       if (sv.kind == SliceKind::Crossing && sv.family == 0) alpha_hits.push_back({sv.value, sv.F[1]});
     }
     std::sort(alpha_hits.begin(), alpha_hits.end());
-    const auto& F0 = out.vertices[static_cast<size_t>(cv[0])].F;
-    const auto& F1 = out.vertices[static_cast<size_t>(cv[1])].F;
-    const auto& F2 = out.vertices[static_cast<size_t>(cv[2])].F;
+    const auto F0 = out.vertices[static_cast<size_t>(cv[0])].F;  // copies: out.vertices grows below
+    const auto F1 = out.vertices[static_cast<size_t>(cv[1])].F;
+    const auto F2 = out.vertices[static_cast<size_t>(cv[2])].F;
     const double det = (F1[0] - F0[0]) * (F2[1] - F0[1]) - (F2[0] - F0[0]) * (F1[1] - F0[1]);
     for (size_t h = 0; h + 1 < alpha_hits.size(); h += 2) {
       if (alpha_hits[h].first != alpha_hits[h + 1].first)

@@ -252,13 +252,47 @@ class SeamOptimizer {
     return false;
   }
 
+  // Moves a non-grid vertex of f towards the centroid of its neighbours until all its triangles are valid.
+  // (Non-grid vertices may sit anywhere; the move is a fraction of a grid step, along the surface.)
+  bool relocate_vertex(FH f) {
+    for (auto v : mesh_.fv_range(f)) {
+      if (mv(v).lattice) continue;
+      Vec3 centroid{0, 0, 0};
+      int n = 0;
+      for (auto w : mesh_.vv_range(v)) {
+        centroid += pos(w);
+        ++n;
+      }
+      if (n == 0) continue;
+      centroid = centroid * (1.0 / n);
+      const Vec3 old = pos(v);
+      for (double t : {1.0, 0.5, 0.25, 0.75, 0.125}) {
+        const Vec3 p = lerp(old, centroid, t);
+        bool ok = true;
+        for (auto oh : mesh_.voh_range(v)) {
+          if (mesh_.is_boundary(oh)) continue;
+          const VH a = mesh_.to_vertex_handle(oh), b = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(oh));
+          if (!triangle_ok(v, a, b, p, pos(a), pos(b))) {
+            ok = false;
+            break;
+          }
+        }
+        if (ok) {
+          m_.vertices[static_cast<size_t>(v.idx())].position = p;
+          return true;
+        }
+      }
+    }
+    return false;
+  }
+
   size_t remove_bad_triangles() {
     size_t repairs = 0;
     for (int round = 0; round < 16; ++round) {
       size_t fixed = 0;
       for (auto f : mesh_.faces()) {
         if (mesh_.status(f).deleted() || face_ok(f)) continue;
-        if (repair_face(f)) ++fixed;
+        if (repair_face(f) || relocate_vertex(f)) ++fixed;
       }
       repairs += fixed;
       if (fixed == 0) break;
