@@ -1,5 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <map>
+#include <tuple>
+
 #include "prm/remesh/lattice.h"
 #include "prm/remesh/resample.h"
 #include "prm/vec3.h"
@@ -103,6 +106,58 @@ TEST(Resample, TorusKeepsGenus) {
   const auto& s = prm.stats;
   std::printf("torus: V %zu F %zu regular %.1f%% stuck %zu unrepaired %zu\n", s.vertices, s.faces,
               100.0 * s.regular_faces / s.faces, s.stuck, s.unrepaired);
+}
+
+// Every grid vertex sits exactly on its lattice point in quantized coordinates, and every regular triangle
+// is a grid triangle of its relief facing the relief's axis.
+void expect_exact_lattice(const PrmMesh& prm) {
+  size_t checked = 0;
+  for (size_t v = 0; v < prm.mesh.positions.size(); ++v) {
+    const int32_t r = prm.vertex_relief[v];
+    if (r < 0) continue;
+    const int pair = axis_pair(prm.relief_axis[static_cast<size_t>(r)]);
+    const auto base = prm.lattice.to_base(prm.lattice_i[v], prm.lattice_j[v]);
+    ASSERT_EQ(prm.frame.quantize(prm.mesh.positions[v][static_cast<size_t>(base_u(pair))], base_u(pair)), base[0]);
+    ASSERT_EQ(prm.frame.quantize(prm.mesh.positions[v][static_cast<size_t>(base_w(pair))], base_w(pair)), base[1]);
+    ++checked;
+  }
+  EXPECT_GT(checked, 0u);
+  for (size_t f = 0; f < prm.mesh.triangles.size(); ++f) {
+    if (!prm.face_regular[f]) continue;
+    const Tri& t = prm.mesh.triangles[f];
+    const int axis = prm.relief_axis[static_cast<size_t>(prm.face_relief[f])];
+    auto ij = [&](uint32_t v) { return std::array<int64_t, 2>{prm.lattice_i[v], prm.lattice_j[v]}; };
+    ASSERT_TRUE(is_grid_triangle(axis, ij(t[0]), ij(t[1]), ij(t[2])));
+    const Vec3 n = triangle_normal_area2(prm.mesh.positions[t[0]], prm.mesh.positions[t[1]], prm.mesh.positions[t[2]]);
+    ASSERT_GT(dot(n, axis_vector(axis)), 0.0);
+  }
+}
+
+TEST(Resample, RegularVerticesAreExactLatticePoints) {
+  const PrmMesh prm = run(test::icosphere(4, 1.0, 0.05), 60);
+  expect_exact_lattice(prm);
+}
+
+TEST(Resample, SelfOverlappingReliefWorks) {
+  // The ramp's top overlaps itself in projection along z: one relief with two sheets over the same lattice points.
+  const Mesh ramp = test::helical_ramp();
+  ASSERT_TRUE(test::topology(ramp).closed_manifold);
+  const PrmMesh prm = run(ramp, 40);
+  const auto t = test::topology(prm.mesh);
+  EXPECT_TRUE(t.closed_manifold);
+  EXPECT_EQ(t.components, 1);
+  EXPECT_EQ(t.genus_sum, 0);
+  EXPECT_EQ(prm.stats.unrepaired, 0u);
+  expect_exact_lattice(prm);
+  // Two distinct grid vertices of one relief with the same lattice coordinates: the relief overlaps itself.
+  std::map<std::tuple<int32_t, int32_t, int32_t>, int> seen;
+  int overlaps = 0;
+  for (size_t v = 0; v < prm.mesh.positions.size(); ++v)
+    if (prm.vertex_relief[v] >= 0 && ++seen[{prm.vertex_relief[v], prm.lattice_i[v], prm.lattice_j[v]}] == 2) ++overlaps;
+  EXPECT_GT(overlaps, 100);
+  std::printf("ramp: V %zu F %zu regular %.1f%% overlapping lattice points %d\n", prm.stats.vertices, prm.stats.faces,
+              100.0 * prm.stats.regular_faces / prm.stats.faces, overlaps);
+  EXPECT_GT(static_cast<double>(prm.stats.regular_faces) / static_cast<double>(prm.stats.faces), 0.7);
 }
 
 }  // namespace

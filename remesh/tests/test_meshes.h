@@ -67,6 +67,47 @@ inline Mesh torus(int n, int m, double R = 1.0, double r = 0.35) {
   return mesh;
 }
 
+// A thick helical ramp of 1.5 turns around the z axis: its top faces +z and overlaps itself in projection, a
+// self-overlapping relief. The cross-section (r0..r1 by thickness) is swept along the helix; the ends are fanned.
+inline Mesh helical_ramp(int steps = 360, double turns = 1.5, double r0 = 0.5, double r1 = 1.0, double pitch = 0.32,
+                         double thickness = 0.1) {
+  Mesh m;
+  // Cross-section loop: bottom (r0->r1), outer wall, top (r1->r0), inner wall; 8 points per side.
+  std::vector<std::array<double, 2>> loop;  // (r, z offset)
+  const int per = 8;
+  for (int k = 0; k < per; ++k) loop.push_back({r0 + (r1 - r0) * k / per, 0});
+  for (int k = 0; k < per; ++k) loop.push_back({r1, thickness * k / per});
+  for (int k = 0; k < per; ++k) loop.push_back({r1 - (r1 - r0) * k / per, thickness});
+  for (int k = 0; k < per; ++k) loop.push_back({r0, thickness - thickness * k / per});
+  const int n = static_cast<int>(loop.size());
+  for (int s = 0; s <= steps; ++s) {
+    const double th = 2 * M_PI * turns * s / steps;
+    for (const auto& c : loop)
+      m.positions.push_back({c[0] * std::cos(th), c[0] * std::sin(th), pitch * th / (2 * M_PI) + c[1]});
+  }
+  auto id = [&](int s, int k) { return static_cast<uint32_t>(s * n + (k % n)); };
+  for (int s = 0; s < steps; ++s)
+    for (int k = 0; k < n; ++k) {
+      // Outward orientation: the loop runs bottom, outer, top, inner (counter-clockwise seen along +theta).
+      m.triangles.push_back({id(s, k), id(s + 1, k), id(s + 1, k + 1)});
+      m.triangles.push_back({id(s, k), id(s + 1, k + 1), id(s, k + 1)});
+    }
+  for (int end = 0; end < 2; ++end) {
+    const int s = end == 0 ? 0 : steps;
+    Vec3 c{0, 0, 0};
+    for (int k = 0; k < n; ++k) c += m.positions[id(s, k)];
+    m.positions.push_back(c * (1.0 / n));
+    const uint32_t centre = static_cast<uint32_t>(m.positions.size() - 1);
+    for (int k = 0; k < n; ++k) {
+      if (end == 0)
+        m.triangles.push_back({centre, id(s, k), id(s, k + 1)});
+      else
+        m.triangles.push_back({centre, id(s, k + 1), id(s, k)});
+    }
+  }
+  return m;
+}
+
 struct Topology {
   bool closed_manifold = true;  // every directed edge once, its reverse once, one fan per vertex
   int components = 0;
