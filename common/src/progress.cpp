@@ -2,7 +2,7 @@
 
 #include <unistd.h>
 
-#include <atomic>
+#include <algorithm>
 #include <cstdio>
 
 namespace prm {
@@ -20,19 +20,25 @@ Progress::Progress(std::string label, size_t total)
 
 Progress::~Progress() { finish(); }
 
-void Progress::advance(size_t units) { set(done_ + units); }
+void Progress::advance(size_t units) {
+  done_ += units;
+  draw(false);
+}
 
 void Progress::set(size_t done) {
-  done_ = done < total_ ? done : total_;
+  done_ = done;
   draw(false);
 }
 
 void Progress::draw(bool force) {
   if (!active_) return;
+  std::unique_lock<std::mutex> lock(draw_mutex_, std::try_to_lock);
+  if (!lock.owns_lock()) return;
   const auto now = std::chrono::steady_clock::now();
   // Stay silent during the first second: short work shows nothing.
   if (!force && now - start_ < std::chrono::seconds(1)) return;
-  const int percent = static_cast<int>(100.0 * static_cast<double>(done_) / static_cast<double>(total_));
+  const size_t done = std::min<size_t>(done_, total_);
+  const int percent = static_cast<int>(100.0 * static_cast<double>(done) / static_cast<double>(total_));
   if (!force && percent == last_percent_ && now - last_draw_ < std::chrono::milliseconds(250)) return;
   last_percent_ = percent;
   last_draw_ = now;

@@ -90,22 +90,17 @@ PrmMesh resample_and_merge(const LayoutInput& layout, const ResampleOptions& opt
   std::vector<ResampledRelief> resampled(st.reliefs);
   {
     Progress progress("remesh: resampling reliefs", face_relief.size());
-    std::atomic<size_t> done{0};
     auto work = [&](size_t k) {
       const size_t r = order[k];
       if (relief_faces[r].empty()) return;
       const SlicedRelief sliced = slice_relief(view, relief_faces[r], prm.relief_axis[r]);
       resampled[r] = resample_relief(sliced, prm.relief_axis[r]);
-      done += relief_faces[r].size();
+      progress.advance(relief_faces[r].size());
     };
-    if (options.parallel) {
-      tbb::parallel_for(size_t{0}, order.size(), [&](size_t k) { work(k); });
-    } else {
-      for (size_t k = 0; k < order.size(); ++k) {
-        work(k);
-        progress.set(done);
-      }
-    }
+    if (options.parallel)
+      tbb::parallel_for(size_t{0}, order.size(), [&](size_t k) { work(k); }, tbb::simple_partitioner());
+    else
+      for (size_t k = 0; k < order.size(); ++k) work(k);
     progress.finish();
   }
   for (const ResampledRelief& r : resampled) {

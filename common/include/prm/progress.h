@@ -1,8 +1,11 @@
 // A progress line on the terminal for work that takes longer than a second.
 // Writes "\r<label> [#####     ]  42%" to stderr, only when stderr is a terminal and progress is enabled.
+// advance() and set() may be called from several threads.
 #pragma once
 
+#include <atomic>
 #include <chrono>
+#include <mutex>
 #include <string>
 
 namespace prm {
@@ -27,7 +30,8 @@ class Progress {
   void draw(bool force);
   std::string label_;
   size_t total_;
-  size_t done_ = 0;
+  std::atomic<size_t> done_{0};
+  std::mutex draw_mutex_;
   bool active_;
   bool drawn_ = false;
   int last_percent_ = -1;
