@@ -1,0 +1,178 @@
+// prm/codec.h: the PRM bitstream encoder and decoder. The only public header of prm_codec.
+//
+// C++17 and the standard library only. The normative description of the format is spec/prm-format.md; section
+// numbers quoted here (§N.M) refer to it.
+//
+// Safety contract
+// - decode() and inspect() are safe on untrusted input: any byte string returns either a valid mesh or a Status
+//   naming the error, the byte offset and the spec section. They never throw, never read outside the given buffer,
+//   and never allocate more than the limits allow (§4): a claimed count is checked against the caller's limits and
+//   against what the stream's byte length can possibly encode before anything is allocated.
+// - encode() never throws either; a mesh it cannot encode (non-manifold, degenerate, index out of range, non-finite
+//   coordinates) returns a Status that says why and where.
+// - Out of memory (std::bad_alloc) inside the codec is returned as Error::out_of_memory.
+//
+// What is encoded (§6): an indexed triangle mesh whose edges each have one or two triangles with opposite
+// orientations and whose vertices each have one fan of triangles (an oriented 2-manifold, possibly with boundaries,
+// handles and several components). Vertices no triangle uses are dropped. The decoded mesh has the same triangles
+// up to the order of vertices, of triangles and the rotation of each triangle's corners; the order is the one the
+// spec defines (§6.6), and encode() reports it (EncodeReport::vertex_order / triangle_order). Positions are quantized
+// to `bits` bits per coordinate in a frame (origin, step) (§10.1) and decode exactly to the quantized input.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace prm::codec {
+
+// Format version written by this encoder (§3.2). A decoder accepts major version kFormatMajor only.
+constexpr uint8_t kFormatMajor = 1;
+constexpr uint8_t kFormatMinor = 0;
+
+enum class Error : uint8_t {
+  ok = 0,
+  // Encoder: the caller's mesh or options.
+  invalid_argument,          // option out of range, index out of range, non-finite coordinate, frame not valid
+  degenerate_triangle,       // a triangle uses one vertex twice
+  non_manifold_edge,         // an edge with three or more triangles
+  inconsistent_orientation,  // two triangles traverse an edge in the same direction
+  non_manifold_vertex,       // a vertex whose triangles form more than one fan (a "pinched" vertex)
+  // Decoder: the stream.
+  truncated,                 // a read past the end of the stream or of a section
+  bad_magic,                 // not a PRM stream (§3.1)
+  unsupported_version,       // major version not 1 (§3.2)
+  bad_header,                // a header field outside its range (§3.3)
+  bad_section,               // missing, repeated, out-of-order or unknown section, bad length (§3.4)
+  unsupported_feature,       // a section or flag reserved for a later version (§3.4)
+  count_exceeds_limit,       // a count larger than the caller's DecodeLimits (§4.1)
+  count_exceeds_stream,      // a count larger than the stream's bytes can encode (§4.2)
+  bad_connectivity,          // the connectivity data does not describe a valid mesh (§6)
+  non_manifold_result,       // decoding produced a non-manifold or degenerate mesh (§6.8)
+  bad_position,              // a decoded position outside the bounding box (§10)
+  trailing_bytes,            // a section or the stream has bytes after its last field (§3.4, §5.6)
+  crc_mismatch,              // the CRC-32 does not match (§3.5)
+  out_of_memory,             // an allocation failed
+  internal,                  // a bug: encoder self-check failed
+};
+
+// A stable lower_snake name for an error ("count_exceeds_stream").
+const char* error_name(Error error);
+
+struct Status {
+  Error error = Error::ok;
+  std::string message;            // human-readable, names the field or the mesh element
+  uint64_t byte_offset = 0;       // decoder: offset in the stream where the problem was detected
+  const char* spec_section = "";  // the spec section whose rule was broken, e.g. "6.4"
+  bool ok() const { return error == Error::ok; }
+};
+
+template <typename T>
+struct Result {
+  Status status;
+  T value{};
+  bool ok() const { return status.ok(); }
+};
+
+// §10.1 Quantization frame (docs/ARCHITECTURE.md, "Quantization frame"): q = floor((p - origin) / step + 0.5)
+// clamped to [0, 2^bits - 1]; dequantized p' = origin + q * step (IEEE double).
+struct Frame {
+  int bits = 12;                            // 8..20
+  std::array<double, 3> origin{0, 0, 0};
+  double step = 1.0;                        // > 0 and finite
+};
+
+// The frame ARCHITECTURE.md prescribes for positions xyz[3 * n]: origin = min corner of the bounding box,
+// step = largest extent / (2^bits - 1) (1.0 when all points coincide).
+Frame make_frame(const double* xyz, size_t num_vertices, int bits);
+Frame make_frame(const float* xyz, size_t num_vertices, int bits);
+uint32_t quantize(double p, double origin, double step, int bits);
+inline double dequantize(uint32_t q, double origin, double step) { return origin + static_cast<double>(q) * step; }
+
+struct EncodeOptions {
+  int position_bits = 12;  // 8..20; ignored by encode_quantized (the frame gives the bits)
+};
+
+// What encode() did; sizes in bytes.
+struct EncodeReport {
+  size_t total_bytes = 0;
+  size_t header_bytes = 0;        // magic, version, header (§3.3)
+  size_t connectivity_bytes = 0;  // section 1 payload (§6.3)
+  size_t position_bytes = 0;      // section 2 payload (§10)
+  size_t framing_bytes = 0;       // section ids, lengths, CRC
+  uint32_t vertices = 0;          // encoded (= decoded) vertex count
+  uint32_t triangles = 0;
+  uint32_t components = 0;
+  uint32_t holes = 0;             // boundary loops closed by a dummy vertex (§6.7)
+  uint32_t handles = 0;           // sum of component genera (§6.4.6)
+  uint32_t unreferenced_dropped = 0;
+  // Decoded vertex k is input vertex vertex_order[k]; decoded triangle k is input triangle triangle_order[k], with
+  // its corners rotated so that decoded corner 0 is input corner triangle_rotation[k] (0..2).
+  std::vector<uint32_t> vertex_order;
+  std::vector<uint32_t> triangle_order;
+  std::vector<uint8_t> triangle_rotation;
+};
+
+// Encodes triangles[3 * num_triangles] (vertex indices) over positions xyz[3 * num_vertices], quantized to
+// options.position_bits bits in make_frame()'s frame. `report` may be null.
+Result<std::vector<uint8_t>> encode(const float* xyz, size_t num_vertices, const uint32_t* triangles,
+                                    size_t num_triangles, const EncodeOptions& options = {},
+                                    EncodeReport* report = nullptr);
+Result<std::vector<uint8_t>> encode(const double* xyz, size_t num_vertices, const uint32_t* triangles,
+                                    size_t num_triangles, const EncodeOptions& options = {},
+                                    EncodeReport* report = nullptr);
+// Pre-quantized positions q[3 * num_vertices], each in [0, 2^frame.bits - 1], in the caller's frame (the PRM
+// remesher's frame, so that lattice points stay exact).
+Result<std::vector<uint8_t>> encode_quantized(const uint32_t* q, size_t num_vertices, const uint32_t* triangles,
+                                              size_t num_triangles, const Frame& frame,
+                                              EncodeReport* report = nullptr);
+
+// §4.1 Limits the caller sets; a stream asking for more is rejected with count_exceeds_limit before allocation.
+struct DecodeLimits {
+  uint64_t max_vertices = uint64_t{1} << 26;   // decoded vertices, dummy vertices included
+  uint64_t max_triangles = uint64_t{1} << 27;  // decoded triangles, dummy triangles included (hard cap 2^29)
+};
+
+enum class PositionOutput : uint8_t { quantized_only, float32, float64 };
+
+struct DecodeOptions {
+  DecodeLimits limits;
+  PositionOutput positions = PositionOutput::float32;
+};
+
+struct DecodedMesh {
+  Frame frame;
+  std::vector<uint32_t> triangles;     // 3 per triangle, in the order of §6.6
+  std::vector<uint32_t> quantized;     // 3 per vertex, exact
+  std::vector<float> positions_f32;    // 3 per vertex when options.positions == float32
+  std::vector<double> positions_f64;   // 3 per vertex when options.positions == float64
+  size_t num_vertices() const { return quantized.size() / 3; }
+  size_t num_triangles() const { return triangles.size() / 3; }
+};
+
+Result<DecodedMesh> decode(const uint8_t* data, size_t size, const DecodeOptions& options = {});
+
+// The container of a stream (§3), for `prm info`: header fields and every section's place and size. Checks the
+// magic, version, header ranges, section framing and the CRC; does not decode the sections.
+struct SectionInfo {
+  uint8_t id = 0;
+  const char* name = "";
+  uint64_t offset = 0;  // of the payload
+  uint64_t size = 0;    // payload bytes
+};
+struct StreamInfo {
+  uint8_t version_major = 0, version_minor = 0;
+  uint8_t flags = 0;
+  uint32_t vertices = 0, triangles = 0;
+  Frame frame;
+  std::array<uint32_t, 3> bbox_min{}, bbox_max{};  // quantized
+  uint64_t header_bytes = 0;
+  std::vector<SectionInfo> sections;
+  uint32_t crc = 0;
+  uint64_t total_bytes = 0;
+};
+Result<StreamInfo> inspect(const uint8_t* data, size_t size);
+
+}  // namespace prm::codec

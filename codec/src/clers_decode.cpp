@@ -1,0 +1,258 @@
+// §6.3-6.4 The connectivity section, decoded by Spirale Reversi (spirale_reversi.cpp). The encoder side is
+// clers_encode.cpp.
+#include <algorithm>
+#include <memory>
+#include <string>
+
+#include "clers.h"
+#include "corner_table.h"
+#include "limits.h"
+#include "range_decoder.h"
+#include "status.h"
+#include "stream_reader.h"
+
+namespace prm::codec {
+namespace {
+
+Status reader_error(const StreamReader& r, const char* section, const char* what) {
+  return make_status(r.error(), section, r.error_offset(), std::string(what));
+}
+
+}  // namespace
+
+Status read_connectivity(const uint8_t* data, size_t size, uint64_t offset, const DecodeLimits& limits,
+                         uint32_t header_vertices, uint32_t header_triangles, ClosedMesh& mesh) {
+  StreamReader r(data, size, offset);
+  // §6.3 Component_Count and Component_Size[]: plausibility before allocation (§4.3): every varint takes a byte.
+  const uint32_t num_components = r.varint();
+  if (r.failed()) return reader_error(r, "6.3", "Component_Count");
+  if (num_components > r.remaining())
+    return make_status(Error::count_exceeds_stream, "4.3", r.offset(),
+                       "Component_Count " + std::to_string(num_components) + " exceeds the section's bytes");
+  const uint64_t max_triangles = std::min<uint64_t>(limits.max_triangles, kHardMaxTriangles);
+  std::vector<uint32_t> sizes(num_components);
+  uint64_t total = 0;
+  for (uint32_t k = 0; k < num_components; ++k) {
+    const uint64_t at = r.offset();
+    sizes[k] = r.varint();
+    if (r.failed()) return reader_error(r, "6.3", "Component_Size");
+    if (sizes[k] < 2 || sizes[k] % 2 != 0)
+      return make_status(Error::bad_connectivity, "6.3", at,
+                         "Component_Size " + std::to_string(sizes[k]) + " is not an even number >= 2");
+    total += sizes[k];
+    if (total > max_triangles)
+      return make_status(Error::count_exceeds_limit, "4.1", at,
+                         "the components have more than " + std::to_string(max_triangles) + " triangles");
+  }
+  const uint32_t nt = static_cast<uint32_t>(total);
+  // Component of each triangle is found by walking; first triangles are the running sums.
+  std::vector<uint32_t> comp_first(num_components), comp_end(num_components);
+  {
+    uint32_t s = 0;
+    for (uint32_t k = 0; k < num_components; ++k) {
+      comp_first[k] = s;
+      s += sizes[k];
+      comp_end[k] = s;
+    }
+  }
+  // §6.3 Handle_Count and the handle events.
+  const uint32_t num_handles = r.varint();
+  if (r.failed()) return reader_error(r, "6.3", "Handle_Count");
+  if (num_handles > r.remaining() / 2)
+    return make_status(Error::count_exceeds_stream, "4.3", r.offset(), "Handle_Count exceeds the section's bytes");
+  std::vector<HandleEvent> handles(num_handles);
+  std::vector<uint32_t> handles_in(num_components, 0);
+  {
+    uint64_t prev = 0;
+    uint32_t k = 0;
+    for (uint32_t h = 0; h < num_handles; ++h) {
+      const uint64_t at = r.offset();
+      const uint32_t delta = r.varint();
+      const uint32_t packed = r.varint();
+      if (r.failed()) return reader_error(r, "6.3", "handle event");
+      const uint64_t t = prev + delta;
+      const uint64_t partner = t + 1 + (packed >> 2);
+      const uint32_t corner = packed & 3;
+      if ((h > 0 && delta == 0) || partner >= nt || corner > 2)
+        return make_status(Error::bad_connectivity, "6.3", at, "handle event out of range");
+      while (k < num_components && comp_end[k] <= t) ++k;
+      if (t == comp_first[k] || partner >= comp_end[k])
+        return make_status(Error::bad_connectivity, "6.3", at,
+                           "handle event on a first triangle or across components");
+      ++handles_in[k];
+      handles[h] = {static_cast<uint32_t>(t), static_cast<uint32_t>(partner), static_cast<uint8_t>(corner)};
+      prev = t;
+    }
+  }
+  // §6.4.8 Vertices per component: V = 2 - H + T / 2 (Euler, H = 2 * genus handle events).
+  uint64_t nv64 = 0;
+  for (uint32_t k = 0; k < num_components; ++k) {
+    if (handles_in[k] % 2 != 0 || handles_in[k] + 1 > sizes[k] / 2)
+      return make_status(Error::bad_connectivity, "6.3", offset,
+                         "component " + std::to_string(k) + " has an impossible number of handle events");
+    nv64 += 2 + sizes[k] / 2 - handles_in[k];
+  }
+  const uint64_t max_vertices = std::min<uint64_t>(limits.max_vertices, kHardMaxVertices);
+  if (nv64 > max_vertices)
+    return make_status(Error::count_exceeds_limit, "4.1", offset,
+                       "the components have more than " + std::to_string(max_vertices) + " vertices");
+  const uint32_t nv = static_cast<uint32_t>(nv64);
+  // §6.3 Dummy_Count and dummy vertex ids.
+  const uint32_t num_dummies = r.varint();
+  if (r.failed()) return reader_error(r, "6.3", "Dummy_Count");
+  if (num_dummies > nv || num_dummies > r.remaining())
+    return make_status(Error::count_exceeds_stream, "4.3", r.offset(), "Dummy_Count out of range");
+  if (uint64_t{header_vertices} + num_dummies != nv)
+    return make_status(Error::bad_connectivity, "6.3", r.offset(),
+                       "Vertex_Count " + std::to_string(header_vertices) + " + Dummy_Count " +
+                           std::to_string(num_dummies) + " differs from the components' " + std::to_string(nv) +
+                           " vertices");
+  mesh.is_dummy.assign(nv, 0);
+  {
+    uint64_t prev = 0;
+    for (uint32_t d = 0; d < num_dummies; ++d) {
+      const uint64_t at = r.offset();
+      const uint32_t delta = r.varint();
+      if (r.failed()) return reader_error(r, "6.3", "dummy vertex");
+      const uint64_t v = prev + delta;
+      if ((d > 0 && delta == 0) || v >= nv)
+        return make_status(Error::bad_connectivity, "6.3", at, "dummy vertex id out of range or not increasing");
+      mesh.is_dummy[v] = 1;
+      prev = v;
+    }
+  }
+
+  // §6.5 The range-coded symbols: the rest of the section.
+  const uint64_t clers_offset = r.offset();
+  const size_t clers_size = r.remaining();
+  const uint8_t* clers = r.bytes(clers_size);
+  if (nt == 0) {
+    if (clers_size != 0) return make_status(Error::trailing_bytes, "6.3", clers_offset, "symbols for no triangles");
+    mesh.num_vertices = 0;
+    mesh.corner_vertex.clear();
+    mesh.opp.clear();
+    if (header_triangles != 0) return make_status(Error::bad_connectivity, "6.3", offset, "Triangle_Count mismatch");
+    return ok_status();
+  }
+  // §4.2 Every coded symbol takes at least one decision; forced symbols (§6.5.1) are the first decoded symbol of
+  // each component and the handle S triangles.
+  const uint64_t coded = uint64_t{nt} - 2 * uint64_t{num_components} - num_handles;
+  if (clers_size < 4 || coded > kMaxDecisionsPerByte * (clers_size - 3))
+    return make_status(Error::count_exceeds_stream, "4.2", clers_offset,
+                       std::to_string(coded) + " symbols cannot be coded in " + std::to_string(clers_size) +
+                           " bytes");
+
+  SpiraleReversi sr;
+  sr.init(nt, nv);
+  RangeDecoder rc;
+  rc.init(clers, clers_size);
+  auto models = std::make_unique<ClersModels>();
+  uint32_t comp = num_components;
+  uint32_t h = num_handles;
+  uint32_t prev1 = kE, prev2 = kE;
+  auto fail = [&](const char* section) {
+    if (rc.failed())
+      return make_status(Error::truncated, "5.5", clers_offset + clers_size, "the CLERS symbols end early");
+    return make_status(Error::bad_connectivity, section, clers_offset + rc.consumed(), sr.error());
+  };
+  for (uint32_t i = nt; i-- > 0;) {
+    if (comp > 0 && comp_first[comp - 1] == i) {
+      if (!sr.close_component(i)) return fail("6.4.7");
+      --comp;
+      continue;
+    }
+    if (h > 0 && handles[h - 1].triangle == i) {
+      --h;
+      if (!sr.apply_handle(i, handles[h], comp_end[comp - 1])) return fail("6.4.6");
+      prev2 = prev1;
+      prev1 = kS;
+      continue;
+    }
+    // §6.5.1 Binarization.
+    uint8_t s = kE;
+    const uint32_t depth = sr.stack_depth();
+    if (depth > 0) {
+      BitModel* m = models->m[clers_context(prev1, prev2, sr.gate_start_count())];
+      if (!rc.decode_bit(m[0])) {
+        s = kC;
+      } else if (!rc.decode_bit(m[1])) {
+        s = kR;
+      } else if (depth >= 2 && !rc.decode_bit(m[2])) {
+        s = kS;
+      } else {
+        s = rc.decode_bit(m[3]) ? kE : kL;
+      }
+      if (rc.failed()) return fail("5.5");
+    }
+    if (!sr.apply(i, s)) return fail("6.4");
+    prev2 = prev1;
+    prev1 = s;
+  }
+  if (!rc.finish())
+    return rc.failed() ? fail("5.5")
+                       : make_status(Error::trailing_bytes, "5.6", clers_offset + rc.consumed(),
+                                     "bytes after the last CLERS symbol");
+  if (!sr.finish(mesh.corner_vertex))
+    return make_status(sr.error_is_non_manifold() ? Error::non_manifold_result : Error::bad_connectivity, "6.8",
+                       clers_offset, sr.error());
+  mesh.num_vertices = nv;
+  mesh.opp = std::move(sr.opposites());
+
+  if (num_dummies == 0) {
+    if (nt != header_triangles)
+      return make_status(Error::bad_connectivity, "6.7", clers_offset,
+                         "Triangle_Count " + std::to_string(header_triangles) + " differs from the decoded " +
+                             std::to_string(nt));
+    return ok_status();
+  }
+  // §6.7 Dummy vertices: no edge joins two of them, each real vertex meets at most one of them, and every real
+  // vertex keeps a real triangle.
+  std::vector<uint32_t> dummy_of(nv, UINT32_MAX), real_tris(nv, 0);
+  uint64_t out_triangles = 0;
+  for (uint32_t t = 0; t < nt; ++t) {
+    const uint32_t* f = &mesh.corner_vertex[3 * t];
+    int dummies = mesh.is_dummy[f[0]] + mesh.is_dummy[f[1]] + mesh.is_dummy[f[2]];
+    if (dummies > 1)
+      return make_status(Error::non_manifold_result, "6.7", clers_offset, "an edge joins two dummy vertices");
+    if (dummies == 0) {
+      ++out_triangles;
+      for (int k = 0; k < 3; ++k) ++real_tris[f[k]];
+      continue;
+    }
+    for (int k = 0; k < 3; ++k) {
+      if (mesh.is_dummy[f[k]]) continue;
+      const uint32_t d = mesh.is_dummy[f[0]] ? f[0] : mesh.is_dummy[f[1]] ? f[1] : f[2];
+      if (dummy_of[f[k]] != UINT32_MAX && dummy_of[f[k]] != d)
+        return make_status(Error::non_manifold_result, "6.7", clers_offset,
+                           "a vertex lies on two holes (pinched boundary)");
+      dummy_of[f[k]] = d;
+    }
+  }
+  for (uint32_t v = 0; v < nv; ++v)
+    if (!mesh.is_dummy[v] && real_tris[v] == 0)
+      return make_status(Error::non_manifold_result, "6.7", clers_offset, "a vertex has only dummy triangles");
+  if (out_triangles != header_triangles)
+    return make_status(Error::bad_connectivity, "6.7", clers_offset,
+                       "Triangle_Count " + std::to_string(header_triangles) + " differs from the decoded " +
+                           std::to_string(out_triangles));
+  return ok_status();
+}
+
+void remove_dummies(const ClosedMesh& mesh, std::vector<uint32_t>& triangles, std::vector<uint32_t>& old_to_new) {
+  old_to_new.assign(mesh.num_vertices, UINT32_MAX);
+  uint32_t n = 0;
+  for (uint32_t v = 0; v < mesh.num_vertices; ++v)
+    if (!mesh.is_dummy[v]) old_to_new[v] = n++;
+  triangles.clear();
+  const uint32_t nt = mesh.num_triangles();
+  triangles.reserve(size_t{3} * nt);
+  for (uint32_t t = 0; t < nt; ++t) {
+    const uint32_t* f = &mesh.corner_vertex[3 * t];
+    if (mesh.is_dummy[f[0]] || mesh.is_dummy[f[1]] || mesh.is_dummy[f[2]]) continue;
+    triangles.push_back(old_to_new[f[0]]);
+    triangles.push_back(old_to_new[f[1]]);
+    triangles.push_back(old_to_new[f[2]]);
+  }
+}
+
+}  // namespace prm::codec

@@ -1,0 +1,63 @@
+// §3 The container: magic, version, header, length-prefixed sections in fixed order, CRC-32.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "prm/codec.h"
+
+namespace prm::codec {
+
+// §3.1 Magic: "PRM" followed by 0x1A.
+constexpr uint8_t kMagic[4] = {'P', 'R', 'M', 0x1A};
+
+// §3.4 Section ids. 3..15 are reserved for the PRM sections (irregular triangles, patch headers, heights; see
+// §7-§9); a version 1.0 decoder rejects them as unsupported_feature. Anything else is bad_section.
+enum SectionId : uint8_t {
+  kSectionConnectivity = 1,
+  kSectionPositions = 2,
+  kFirstReservedSection = 3,
+  kLastReservedSection = 15,
+};
+const char* section_name(uint8_t id);
+
+// §3.3 The header fields.
+struct Header {
+  uint8_t version_major = kFormatMajor;
+  uint8_t version_minor = kFormatMinor;
+  uint8_t flags = 0;
+  uint32_t vertices = 0;
+  uint32_t triangles = 0;
+  Frame frame;
+  std::array<uint32_t, 3> bbox_min{};
+  std::array<uint32_t, 3> bbox_max{};
+};
+
+struct Section {
+  uint8_t id = 0;
+  uint64_t offset = 0;  // payload offset in the stream
+  uint64_t size = 0;
+};
+
+struct Container {
+  Header header;
+  uint64_t header_bytes = 0;  // magic, version and header fields
+  std::vector<Section> sections;
+  uint32_t crc = 0;
+  const Section* find(uint8_t id) const {
+    for (const Section& s : sections)
+      if (s.id == id) return &s;
+    return nullptr;
+  }
+};
+
+// §3 Parses and validates the container (not the section payloads).
+Status read_container(const uint8_t* data, size_t size, Container& out);
+
+// Writes a stream: header, then (id, payload) sections in the given (increasing id) order, then the CRC.
+std::vector<uint8_t> write_container(const Header& header, const std::vector<std::pair<uint8_t, const std::vector<uint8_t>*>>& sections,
+                                     size_t* header_bytes);
+
+}  // namespace prm::codec

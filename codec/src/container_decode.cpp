@@ -1,0 +1,114 @@
+// §3 The container, decoder side: everything is checked against the bytes present before it is used.
+#include <cmath>
+#include <cstring>
+#include <string>
+
+#include "container.h"
+#include "crc32.h"
+#include "limits.h"
+#include "status.h"
+#include "stream_reader.h"
+
+namespace prm::codec {
+
+const char* section_name(uint8_t id) {
+  switch (id) {
+    case kSectionConnectivity:
+      return "connectivity";
+    case kSectionPositions:
+      return "positions";
+    default:
+      return id >= kFirstReservedSection && id <= kLastReservedSection ? "reserved" : "unknown";
+  }
+}
+
+Status read_container(const uint8_t* data, size_t size, Container& out) {
+  out = Container{};
+  // §3.1 Magic.
+  if (size < 4 || std::memcmp(data, kMagic, 4) != 0)
+    return make_status(size < 4 ? Error::truncated : Error::bad_magic, "3.1", 0, "not a PRM stream (bad magic)");
+  StreamReader r(data, size);
+  r.bytes(4);
+  // §3.2 Version.
+  Header& h = out.header;
+  h.version_major = r.u8();
+  h.version_minor = r.u8();
+  if (r.failed()) return make_status(Error::truncated, "3.2", r.error_offset(), "stream ends in the version");
+  if (h.version_major != kFormatMajor)
+    return make_status(Error::unsupported_version, "3.2", 4,
+                       "format version " + std::to_string(h.version_major) + "." + std::to_string(h.version_minor) +
+                           " (this decoder reads " + std::to_string(kFormatMajor) + ".x)");
+  // §3.5 CRC-32 of everything before the last 4 bytes.
+  if (size < 4 + 2 + 4) return make_status(Error::truncated, "3.5", size, "stream too short for its CRC");
+  {
+    const uint8_t* c = data + size - 4;
+    out.crc = uint32_t{c[0]} | uint32_t{c[1]} << 8 | uint32_t{c[2]} << 16 | uint32_t{c[3]} << 24;
+    if (crc32(data, size - 4) != out.crc)
+      return make_status(Error::crc_mismatch, "3.5", size - 4, "CRC-32 mismatch: the stream is corrupt or truncated");
+  }
+  StreamReader body(data, size - 4);
+  body.bytes(6);
+  // §3.3 Header.
+  h.flags = body.u8();
+  h.frame.bits = body.u8();
+  h.vertices = body.varint();
+  h.triangles = body.varint();
+  for (int k = 0; k < 3; ++k) h.frame.origin[k] = body.f64();
+  h.frame.step = body.f64();
+  uint32_t extent[3];
+  for (int k = 0; k < 3; ++k) h.bbox_min[k] = body.varint();
+  for (int k = 0; k < 3; ++k) extent[k] = body.varint();
+  if (body.failed())
+    return make_status(body.error(), "3.3", body.error_offset(), "stream ends in the header");
+  out.header_bytes = body.offset();
+  if (h.flags != 0)
+    return make_status(Error::unsupported_feature, "3.3", 6, "Flags " + std::to_string(h.flags) + " (must be 0)");
+  if (h.frame.bits < kMinPositionBits || h.frame.bits > kMaxPositionBits)
+    return make_status(Error::bad_header, "3.3", 7, "Position_Bits " + std::to_string(h.frame.bits) + " not in 8..20");
+  for (int k = 0; k < 3; ++k)
+    if (!std::isfinite(h.frame.origin[k]))
+      return make_status(Error::bad_header, "3.3", out.header_bytes, "Origin is not finite");
+  if (!std::isfinite(h.frame.step) || !(h.frame.step > 0))
+    return make_status(Error::bad_header, "3.3", out.header_bytes, "Step is not finite and positive");
+  const uint64_t qmax = (uint64_t{1} << h.frame.bits) - 1;
+  for (int k = 0; k < 3; ++k) {
+    if (uint64_t{h.bbox_min[k]} + extent[k] > qmax)
+      return make_status(Error::bad_header, "3.3", out.header_bytes, "bounding box outside 0..2^Position_Bits-1");
+    h.bbox_max[k] = h.bbox_min[k] + extent[k];
+  }
+  if ((h.vertices == 0) != (h.triangles == 0))
+    return make_status(Error::bad_header, "3.3", out.header_bytes, "vertices without triangles or vice versa");
+  // §3.4 Sections until the CRC, in increasing id order.
+  int last = 0;
+  while (body.remaining() > 0) {
+    const uint64_t at = body.offset();
+    const uint8_t id = body.u8();
+    const uint32_t length = body.varint();
+    if (body.failed()) return make_status(body.error(), "3.4", body.error_offset(), "stream ends in a section header");
+    if (id >= kFirstReservedSection && id <= kLastReservedSection)
+      return make_status(Error::unsupported_feature, "3.4", at,
+                         "section " + std::to_string(id) + " is reserved for a later version (PRM sections)");
+    if (id != kSectionConnectivity && id != kSectionPositions)
+      return make_status(Error::bad_section, "3.4", at, "unknown section id " + std::to_string(id));
+    if (id <= last)
+      return make_status(Error::bad_section, "3.4", at, "section " + std::to_string(id) + " repeated or out of order");
+    last = id;
+    if (length > body.remaining())
+      return make_status(Error::truncated, "3.4", at,
+                         "section " + std::string(section_name(id)) + " is " + std::to_string(length) +
+                             " bytes but only " + std::to_string(body.remaining()) + " remain");
+    Section s;
+    s.id = id;
+    s.offset = body.offset();
+    s.size = length;
+    body.bytes(length);
+    out.sections.push_back(s);
+  }
+  for (uint8_t id : {kSectionConnectivity, kSectionPositions})
+    if (!out.find(id))
+      return make_status(Error::bad_section, "3.4", size - 4,
+                         std::string("the ") + section_name(id) + " section is missing");
+  return ok_status();
+}
+
+}  // namespace prm::codec

@@ -1,0 +1,22 @@
+// §10 The positions section: declarations for position_encode.cpp and position_decode.cpp.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "clers.h"
+#include "prm/codec.h"
+
+namespace prm::codec {
+
+// q holds 3 quantized coordinates per closed-mesh vertex (dummies' entries are ignored), within [lo, hi].
+Status write_positions(const ClosedMesh& mesh, const std::vector<uint32_t>& q, const std::array<uint32_t, 3>& lo,
+                       const std::array<uint32_t, 3>& hi, std::vector<uint8_t>& payload);
+
+// Fills q (3 per closed-mesh vertex; dummies get 0).
+Status read_positions(const uint8_t* data, size_t size, uint64_t offset, const ClosedMesh& mesh,
+                      const std::array<uint32_t, 3>& lo, const std::array<uint32_t, 3>& hi,
+                      std::vector<uint32_t>& q);
+
+}  // namespace prm::codec

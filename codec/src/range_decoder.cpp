@@ -1,0 +1,18 @@
+#include "range_decoder.h"
+
+namespace prm::codec {
+
+// §5.6 Initialisation.
+void RangeDecoder::init(const uint8_t* data, size_t size) {
+  data_ = data;
+  size_ = size;
+  pos_ = 0;
+  range_ = 0xFFFFFFFFu;
+  code_ = 0;
+  failed_ = false;
+  for (int i = 0; i < 4; ++i) code_ = code_ << 8 | next_byte();
+  // A valid encoder's first four bytes are below 0xFFFFFFFF (§5.6), so Code < Range holds from the start.
+  if (code_ == 0xFFFFFFFFu) failed_ = true;
+}
+
+}  // namespace prm::codec

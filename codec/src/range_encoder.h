@@ -1,0 +1,62 @@
+// §5.7 The range encoder, the exact mirror of RangeDecoder (range_decoder.h): 64-bit Low with LZMA's carry
+// handling (a cached byte plus a run of 0xFF bytes), whose first output byte (always 0) is not written.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "adaptive_model.h"
+
+namespace prm::codec {
+
+class RangeEncoder {
+ public:
+  void encode_bit(BitModel& m, int bit) {
+    const uint32_t bound = (range_ >> kProbBits) * m.p;
+    if (bit == 0) {
+      range_ = bound;
+    } else {
+      low_ += bound;
+      range_ -= bound;
+    }
+    m.update(bit);
+    while (range_ < (1u << 24)) {
+      range_ <<= 8;
+      shift_low();
+    }
+  }
+
+  // §5.4 The low `count` bits of v (0..24 bits), most significant first.
+  void encode_direct(uint32_t v, int count) {
+    for (int i = count - 1; i >= 0; --i) {
+      range_ >>= 1;
+      if ((v >> i) & 1) low_ += range_;
+      while (range_ < (1u << 24)) {
+        range_ <<= 8;
+        shift_low();
+      }
+    }
+  }
+
+  // §5.6 Termination: flushes Low; the returned bytes are the complete coded data.
+  std::vector<uint8_t> finish();
+
+ private:
+  void shift_low();
+  void emit(uint8_t b) {
+    if (skip_first_) {
+      skip_first_ = false;  // always 0: Low + Range never exceeds 2^32 - 1 (§5.6)
+      return;
+    }
+    out_.push_back(b);
+  }
+
+  uint64_t low_ = 0;
+  uint32_t range_ = 0xFFFFFFFFu;
+  uint8_t cache_ = 0;
+  uint64_t cache_size_ = 1;
+  bool skip_first_ = true;
+  std::vector<uint8_t> out_;
+};
+
+}  // namespace prm::codec

@@ -1,0 +1,230 @@
+#include "spirale_reversi.h"
+
+#include "corner_table.h"
+
+namespace prm::codec {
+
+// §6.4.1 Initial state: every edge open, no records, empty stack.
+void SpiraleReversi::init(uint32_t num_triangles, uint32_t num_vertices) {
+  num_triangles_ = num_triangles;
+  num_vertices_ = num_vertices;
+  opp_.assign(size_t{3} * num_triangles, -1);
+  rec_.assign(size_t{3} * num_triangles, 0);
+  parent_.clear();
+  count_.clear();
+  id_.clear();
+  const size_t expect = size_t{num_triangles} / 2 + 16;
+  parent_.reserve(expect);
+  count_.reserve(expect);
+  id_.reserve(expect);
+  stack_.clear();
+  closed_ = 0;
+  decoded_ = 0;
+  error_.clear();
+  non_manifold_ = false;
+}
+
+bool SpiraleReversi::fail(const char* message) {
+  if (error_.empty()) error_ = message;
+  return false;
+}
+
+// §6.4.2 Rotation about the vertex of corner c across glued edges, away from c's outgoing edge, until an open edge
+// ending at that vertex is met. Returns the corner opposite that open edge, or -1 if the fan closes (or the walk
+// exceeds the number of corners, which only a corrupt state can cause).
+int64_t SpiraleReversi::open_edge_into(uint32_t c) {
+  const uint32_t start = c;
+  for (uint64_t steps = 0; steps <= 3 * uint64_t{decoded_} + 3; ++steps) {
+    const uint32_t k = corner_next(c);
+    const int32_t d = opp_[k];
+    if (d < 0) return k;
+    c = corner_next(static_cast<uint32_t>(d));
+    if (c == start) return -1;
+  }
+  return -1;
+}
+
+// The mirror: rotation across outgoing edges until an open edge leaving the vertex of c.
+int64_t SpiraleReversi::open_edge_out_of(uint32_t c) {
+  const uint32_t start = c;
+  for (uint64_t steps = 0; steps <= 3 * uint64_t{decoded_} + 3; ++steps) {
+    const uint32_t k = corner_prev(c);
+    const int32_t d = opp_[k];
+    if (d < 0) return k;
+    c = corner_prev(static_cast<uint32_t>(d));
+    if (c == start) return -1;
+  }
+  return -1;
+}
+
+// §6.4.8 Closing a vertex gives it the next id, counting down from the number of vertices, so that ids end up in
+// forward order of discovery (§6.6).
+bool SpiraleReversi::close_vertex(uint32_t record) {
+  const uint32_t r = find(record);
+  if (id_[r] >= 0) return fail("a vertex is closed twice");
+  if (closed_ >= num_vertices_) return fail("more vertices closed than the component sizes allow");
+  id_[r] = static_cast<int32_t>(num_vertices_ - 1 - closed_);
+  ++closed_;
+  return true;
+}
+
+// §6.4.3-6.4.5 One symbol applied to triangle t (corners 3t: a, 3t+1: b, 3t+2: v; gate a->b, right edge b->v,
+// left edge v->a).
+bool SpiraleReversi::apply(uint32_t t, uint8_t symbol) {
+  const uint32_t a = 3 * t, b = a + 1, v = a + 2;
+  ++decoded_;
+  if (symbol == kE) {  // §6.4.3 a new piece of one triangle
+    set_corner(a, new_record());
+    set_corner(b, new_record());
+    set_corner(v, new_record());
+    stack_.push_back(t);
+    return true;
+  }
+  if (stack_.empty()) return fail("a C, L, R or S symbol with no piece to attach to");
+  const uint32_t j = stack_.back();
+  const uint32_t ja = 3 * j, jb = ja + 1, jg = ja + 2;  // j's gate is ja->jb, opposite jg
+  switch (symbol) {
+    case kC: {  // §6.4.4 attach by the right edge, then zip the left edge around the tip
+      const uint32_t tip = find(rec_[ja]);
+      if (id_[tip] >= 0) return fail("C at a closed vertex");
+      const int64_t e = open_edge_into(ja);
+      if (e < 0 || static_cast<uint32_t>(e) == jg) return fail("C whose tip has no open edge to zip");
+      glue(a, jg);
+      set_corner(v, rec_[ja]);
+      set_corner(b, rec_[jb]);
+      glue(b, static_cast<uint32_t>(e));
+      set_corner(a, rec_[corner_next(static_cast<uint32_t>(e))]);
+      stack_.back() = t;
+      return close_vertex(rec_[v]);
+    }
+    case kL:  // §6.4.5 attach by the right edge; a is new
+      glue(a, jg);
+      set_corner(v, rec_[ja]);
+      set_corner(b, rec_[jb]);
+      set_corner(a, new_record());
+      stack_.back() = t;
+      return true;
+    case kR:  // §6.4.5 attach by the left edge; b is new
+      glue(b, jg);
+      set_corner(a, rec_[ja]);
+      set_corner(v, rec_[jb]);
+      set_corner(b, new_record());
+      stack_.back() = t;
+      return true;
+    case kS: {  // §6.4.5 join the top two pieces: right child on top, left child below
+      if (stack_.size() < 2) return fail("S with fewer than two pieces");
+      const uint32_t k = stack_[stack_.size() - 2];
+      const uint32_t ka = 3 * k, kb = ka + 1, kg = ka + 2;
+      const uint32_t r1 = find(rec_[ja]), r2 = find(rec_[kb]);
+      if (r1 == r2) return fail("S joins a vertex to itself");
+      if (id_[r1] >= 0 || id_[r2] >= 0) return fail("S at a closed vertex");
+      glue(a, jg);
+      glue(b, kg);
+      set_corner(b, rec_[jb]);
+      set_corner(a, rec_[ka]);
+      parent_[r2] = r1;  // §6.4.5 the two records of the tip become one
+      count_[r1] += count_[r2];
+      set_corner(v, r1);
+      stack_.pop_back();
+      stack_.back() = t;
+      return true;
+    }
+    default:
+      return fail("symbol out of range");
+  }
+}
+
+// §6.4.6 An S whose left branch was consumed by its right branch: attach the right edge to the top piece, and glue
+// the left edge to the named edge of a later triangle of the same piece.
+bool SpiraleReversi::apply_handle(uint32_t t, const HandleEvent& event, uint32_t component_end) {
+  ++decoded_;
+  if (stack_.empty()) return fail("handle S with no piece to attach to");
+  if (event.partner <= t || event.partner >= component_end || event.partner_corner > 2)
+    return fail("handle partner outside the component");
+  const uint32_t pc = 3 * event.partner + event.partner_corner;
+  if (opp_[pc] >= 0) return fail("handle partner edge already glued");
+  const uint32_t a = 3 * t, b = a + 1, v = a + 2;
+  const uint32_t j = stack_.back();
+  const uint32_t ja = 3 * j, jb = ja + 1, jg = ja + 2;
+  // The partner edge runs p -> q (corners next(pc) -> prev(pc)); glued to t's left edge v -> a, so q is v and p is a.
+  const uint32_t rq = find(rec_[corner_prev(pc)]);
+  const uint32_t r1 = find(rec_[ja]);
+  if (rq == r1) return fail("handle joins a vertex to itself");
+  if (id_[rq] >= 0 || id_[r1] >= 0) return fail("handle at a closed vertex");
+  glue(a, jg);
+  glue(b, pc);
+  set_corner(b, rec_[jb]);
+  set_corner(a, rec_[corner_next(pc)]);
+  parent_[rq] = r1;
+  count_[r1] += count_[rq];
+  set_corner(v, r1);
+  stack_.back() = t;
+  return true;
+}
+
+// §6.4.7 The first triangle of a component closes its only piece, whose open boundary must be three edges.
+bool SpiraleReversi::close_component(uint32_t t0) {
+  ++decoded_;
+  if (stack_.size() != 1) return fail("a component does not end with exactly one piece");
+  const uint32_t j = stack_.back();
+  const uint32_t ja = 3 * j, jb = ja + 1, jg = ja + 2;
+  const uint32_t p = 3 * t0, q = p + 1, r = p + 2;
+  // t0's gate p->q is glued to j's gate ja->jb: p is jb, q is ja.
+  const int64_t out_b = open_edge_out_of(jb);  // the open edge jb -> y
+  const int64_t in_a = open_edge_into(ja);     // the open edge y' -> ja
+  if (out_b < 0 || in_a < 0 || out_b == jg || in_a == jg || out_b == in_a)
+    return fail("the last piece of a component is not closed by its first triangle");
+  // The open edge facing corner k runs from next(k) to prev(k).
+  const uint32_t y = rec_[corner_prev(static_cast<uint32_t>(out_b))];
+  const uint32_t y2 = rec_[corner_next(static_cast<uint32_t>(in_a))];
+  if (find(y) != find(y2)) return fail("the last piece of a component is not closed by its first triangle");
+  glue(r, jg);
+  set_corner(p, rec_[jb]);
+  set_corner(q, rec_[ja]);
+  set_corner(r, y);
+  glue(p, static_cast<uint32_t>(in_a));   // t0's right edge q->r against y'->ja
+  glue(q, static_cast<uint32_t>(out_b));  // t0's left edge r->p against jb->y
+  stack_.pop_back();
+  // §6.6 ids in forward order: r, q, p are the last three closed in reverse.
+  const uint32_t rr = find(rec_[r]), rq = find(rec_[q]), rp = find(rec_[p]);
+  if (rr == rq || rq == rp || rr == rp) return fail("the first triangle of a component is degenerate");
+  return close_vertex(rr) && close_vertex(rq) && close_vertex(rp);
+}
+
+// §6.4.8 / §6.8 Final ids and validation: every edge glued, every record closed, and the result an oriented closed
+// 2-manifold (each vertex one cycle of triangles, no triangle using a vertex twice, no two edges joining the same
+// pair of vertices).
+bool SpiraleReversi::finish(std::vector<uint32_t>& corner_vertex) {
+  if (!stack_.empty()) return fail("pieces left on the stack");
+  if (closed_ != num_vertices_) return fail("vertex count differs from the component sizes and handles");
+  // Vertex id of every record, then of every corner.
+  const uint32_t num_records = static_cast<uint32_t>(parent_.size());
+  for (uint32_t r = 0; r < num_records; ++r) {
+    const int32_t id = id_[find(r)];
+    if (id < 0) return fail("a vertex is never closed");
+    id_[r] = id;
+  }
+  const size_t nc = size_t{3} * num_triangles_;
+  corner_vertex.resize(nc);
+  non_manifold_ = true;
+  for (size_t t = 0; t < num_triangles_; ++t) {
+    const size_t c = 3 * t;
+    if ((opp_[c] | opp_[c + 1] | opp_[c + 2]) < 0) {
+      non_manifold_ = false;
+      return fail("an edge is left open");
+    }
+    const uint32_t a = static_cast<uint32_t>(id_[rec_[c]]), b = static_cast<uint32_t>(id_[rec_[c + 1]]),
+                   v = static_cast<uint32_t>(id_[rec_[c + 2]]);
+    if (a == b || b == v || a == v) return fail("a decoded triangle uses a vertex twice");
+    corner_vertex[c] = a;
+    corner_vertex[c + 1] = b;
+    corner_vertex[c + 2] = v;
+  }
+  // Every glued edge joins corners of the same records at both ends and records only merge through a triangle
+  // glued to both (§6.4.2), so each vertex is one closed fan. That no two edges join the same pair of vertices is
+  // checked while the fans are walked for the positions (§6.8, §10.3).
+  non_manifold_ = false;
+  return true;
+}
+
+}  // namespace prm::codec

@@ -1,0 +1,90 @@
+// §6.4 Spirale Reversi: rebuilds the closed mesh from the CLERS symbols taken in reverse order.
+//
+// One class, used by both sides: the decoder (clers_decode.cpp) feeds it the symbols it decodes; the encoder
+// (clers_encode.cpp) runs it over its own symbol string to obtain exactly the contexts (§6.5.2) the decoder will
+// see, and then checks that the mesh it rebuilds is the one being encoded.
+//
+// State (§6.4.1): for every corner its opposite corner (-1 while its edge is open) and its vertex record; vertex
+// records are merged by union-find and carry a triangle count and, once closed, a vertex id; a stack of pieces, each
+// named by the triangle whose gate is the piece's open gate.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "clers_shared.h"
+
+namespace prm::codec {
+
+struct HandleEvent {     // §6.4.6
+  uint32_t triangle;     // forward index of the S triangle whose left branch was consumed
+  uint32_t partner;      // forward index of the triangle across its left edge (> triangle)
+  uint8_t partner_corner;  // corner of `partner` (0..2) opposite the shared edge
+};
+
+class SpiraleReversi {
+ public:
+  // §6.4.1 Allocates for `num_triangles` triangles and `num_vertices` vertices (the closed mesh, dummies included).
+  void init(uint32_t num_triangles, uint32_t num_vertices);
+
+  // §6.5.2 Context inputs for the next symbol.
+  uint32_t stack_depth() const { return static_cast<uint32_t>(stack_.size()); }
+  uint32_t gate_start_count() {
+    return stack_.empty() ? 0 : count_[find(rec_[3 * stack_.back()])];
+  }
+
+  // §6.4.3-6.4.7 One step each; false (with error() set) when the operation is impossible.
+  bool apply(uint32_t t, uint8_t symbol);
+  bool apply_handle(uint32_t t, const HandleEvent& event, uint32_t component_end);
+  bool close_component(uint32_t t0);
+
+  // §6.4.8 Final vertex ids per corner (3 per triangle, canonical corner order) and validation (§6.8).
+  bool finish(std::vector<uint32_t>& corner_vertex);
+
+  const std::vector<int32_t>& opposites() const { return opp_; }
+  std::vector<int32_t>& opposites() { return opp_; }
+  const std::string& error() const { return error_; }
+  bool error_is_non_manifold() const { return non_manifold_; }
+
+ private:
+  uint32_t find(uint32_t r) {
+    while (parent_[r] != r) {
+      parent_[r] = parent_[parent_[r]];
+      r = parent_[r];
+    }
+    return r;
+  }
+  uint32_t new_record() {
+    const uint32_t r = static_cast<uint32_t>(parent_.size());
+    parent_.push_back(r);
+    count_.push_back(0);
+    id_.push_back(-1);
+    return r;
+  }
+  void set_corner(uint32_t c, uint32_t record) {
+    rec_[c] = record;
+    ++count_[find(record)];
+  }
+  void glue(uint32_t c1, uint32_t c2) {
+    opp_[c1] = static_cast<int32_t>(c2);
+    opp_[c2] = static_cast<int32_t>(c1);
+  }
+  bool close_vertex(uint32_t record);
+  bool fail(const char* message);
+  // Corner whose opposite edge is the open edge ending at the vertex of corner c (rotating away from c's outgoing
+  // edge), or -1.
+  int64_t open_edge_into(uint32_t c);
+  int64_t open_edge_out_of(uint32_t c);
+
+  std::vector<int32_t> opp_;
+  std::vector<uint32_t> rec_;
+  std::vector<uint32_t> parent_, count_;
+  std::vector<int32_t> id_;
+  std::vector<uint32_t> stack_;
+  uint32_t num_triangles_ = 0, num_vertices_ = 0, closed_ = 0, decoded_ = 0;
+  std::string error_;
+  bool non_manifold_ = false;
+};
+
+}  // namespace prm::codec
