@@ -107,7 +107,7 @@ Status read_connectivity(const uint8_t* data, size_t size, uint64_t offset, cons
                        "Vertex_Count " + std::to_string(header_vertices) + " + Dummy_Count " +
                            std::to_string(num_dummies) + " differs from the components' " + std::to_string(nv) +
                            " vertices");
-  mesh.is_dummy.assign(nv, 0);
+  std::vector<uint32_t> dummies(num_dummies);  // at most one per remaining byte: checked above
   {
     uint64_t prev = 0;
     for (uint32_t d = 0; d < num_dummies; ++d) {
@@ -117,7 +117,7 @@ Status read_connectivity(const uint8_t* data, size_t size, uint64_t offset, cons
       const uint64_t v = prev + delta;
       if ((d > 0 && delta == 0) || v >= nv)
         return make_status(Error::bad_connectivity, "6.3", at, "dummy vertex id out of range or not increasing");
-      mesh.is_dummy[v] = 1;
+      dummies[d] = static_cast<uint32_t>(v);
       prev = v;
     }
   }
@@ -129,6 +129,7 @@ Status read_connectivity(const uint8_t* data, size_t size, uint64_t offset, cons
   if (nt == 0) {
     if (clers_size != 0) return make_status(Error::trailing_bytes, "6.3", clers_offset, "symbols for no triangles");
     mesh.num_vertices = 0;
+    mesh.is_dummy.clear();
     mesh.corner_vertex.clear();
     mesh.opp.clear();
     if (header_triangles != 0) return make_status(Error::bad_connectivity, "6.3", offset, "Triangle_Count mismatch");
@@ -142,6 +143,8 @@ Status read_connectivity(const uint8_t* data, size_t size, uint64_t offset, cons
                        std::to_string(coded) + " symbols cannot be coded in " + std::to_string(clers_size) +
                            " bytes");
 
+  mesh.is_dummy.assign(nv, 0);
+  for (uint32_t d : dummies) mesh.is_dummy[d] = 1;
   SpiraleReversi sr;
   sr.init(nt, nv);
   RangeDecoder rc;
