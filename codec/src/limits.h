@@ -5,9 +5,9 @@
 
 namespace prm::codec {
 
-// §4.2 A range-coded section of L bytes (L >= 4) holds at most kMaxDecisionsPerByte * (L - 3) decisions
-// (modelled or direct bits); this follows from the probability floor kProbMin (adaptive_model.h).
-constexpr uint64_t kMaxDecisionsPerByte = 5700;
+// §4.2 A range-coded block of L bytes (L >= 4) holds at most kMaxDecisionsPerByte * (L - 3) decisions
+// (modelled or direct bits); this follows from the probability floor kProbMin = 127 (adaptive_model.h).
+constexpr uint64_t kMaxDecisionsPerByte = 2880;
 
 // §4.1 Hard caps, whatever the caller allows: corner indices (3 per triangle) must fit in int32.
 constexpr uint64_t kHardMaxTriangles = uint64_t{1} << 29;

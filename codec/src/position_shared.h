@@ -107,8 +107,8 @@ inline bool predict_position(const ClosedMesh& mesh, const std::vector<uint32_t>
   const uint32_t* cv = mesh.corner_vertex.data();
   const int32_t* opp = mesh.opp.data();
   int64_t sum[3] = {0, 0, 0}, lo_p[3] = {INT64_MAX, INT64_MAX, INT64_MAX}, hi_p[3] = {INT64_MIN, INT64_MIN, INT64_MIN};
-  int64_t side[3] = {0, 0, 0}, nsum[3] = {0, 0, 0};
-  int64_t n = 0, nn = 0;
+  int64_t side[3] = {0, 0, 0};
+  int64_t n = 0;
   const uint32_t c0 = vertex_corner[v];
   uint32_t c = c0;
   do {
@@ -116,41 +116,49 @@ inline bool predict_position(const ClosedMesh& mesh, const std::vector<uint32_t>
     if (mark[x] == v) return false;
     mark[x] = v;
     order.push_neighbour(x);
-    const bool dx = done(x);
-    if (dx) {
-      const uint32_t* qx = q + 3 * size_t{x};
-      for (int k = 0; k < 3; ++k) nsum[k] += qx[k];
-      ++nn;
-      if (done(y)) {
-        const uint32_t z = cv[static_cast<uint32_t>(opp[c])];
-        if (done(z)) {
-          const uint32_t *qy = q + 3 * size_t{y}, *qz = q + 3 * size_t{z};
-          for (int k = 0; k < 3; ++k) {
-            const int64_t a = qx[k], b = qy[k], d = qz[k];
-            const int64_t pk = a + b - d;
-            sum[k] += pk;
-            if (pk < lo_p[k]) lo_p[k] = pk;
-            if (pk > hi_p[k]) hi_p[k] = pk;
-            side[k] += (a > d ? a - d : d - a) + (b > d ? b - d : d - b);
-          }
-          ++n;
+    if (done(x) && done(y)) {
+      const uint32_t z = cv[static_cast<uint32_t>(opp[c])];
+      if (done(z)) {
+        const uint32_t *qx = q + 3 * size_t{x}, *qy = q + 3 * size_t{y}, *qz = q + 3 * size_t{z};
+        for (int k = 0; k < 3; ++k) {
+          const int64_t a = qx[k], b = qy[k], d = qz[k];
+          const int64_t pk = a + b - d;
+          sum[k] += pk;
+          if (pk < lo_p[k]) lo_p[k] = pk;
+          if (pk > hi_p[k]) hi_p[k] = pk;
+          if (n == 0) side[k] = (a > d ? a - d : d - a) + (b > d ? b - d : d - b);  // used when n = 1
         }
+        ++n;
       }
     }
     c = fan_next(opp, c);
   } while (c != c0);
   out.parallelograms = static_cast<int>(n);
+  if (n > 0) {
+    for (int k = 0; k < 3; ++k) {
+      const int64_t p = rounded_mean(sum[k], n);
+      out.p[k] = p < lo[k] ? lo[k] : p > hi[k] ? hi[k] : p;
+      out.spread[k] = n > 1 ? hi_p[k] - lo_p[k] : 0;
+      out.scale[k] = n == 1 ? side[k] : 0;
+    }
+    return true;
+  }
+  // No parallelogram: the mean of the decoded neighbours (a second walk; rare in prediction-degree order).
+  int64_t nsum[3] = {0, 0, 0}, nn = 0;
+  c = c0;
+  do {
+    const uint32_t x = cv[corner_next(c)];
+    if (done(x)) {
+      for (int k = 0; k < 3; ++k) nsum[k] += q[3 * size_t{x} + k];
+      ++nn;
+    }
+    c = fan_next(opp, c);
+  } while (c != c0);
   for (int k = 0; k < 3; ++k) {
-    int64_t p;
-    if (n > 0)
-      p = rounded_mean(sum[k], n);
-    else if (nn > 0)
-      p = rounded_mean(nsum[k], nn);
-    else
-      p = previous == UINT32_MAX ? lo[k] : q[3 * size_t{previous} + k];
+    const int64_t p = nn > 0 ? rounded_mean(nsum[k], nn) : previous == UINT32_MAX ? lo[k] : q[3 * size_t{previous} + k];
     out.p[k] = p < lo[k] ? lo[k] : p > hi[k] ? hi[k] : p;
-    out.spread[k] = n > 1 ? hi_p[k] - lo_p[k] : 0;
-    out.scale[k] = n == 1 ? side[k] : 0;  // only used when n = 1 (§10.4.2)
+    out.spread[k] = 0;
+    out.scale[k] = 0;
   }
   return true;
 }
@@ -169,6 +177,20 @@ inline int magnitude_class(uint64_t m) {
 #endif
 }
 
+// Number of bits of x (0 for 0).
+inline int bit_length(uint32_t x) {
+#if defined(__GNUC__) || defined(__clang__)
+  return x ? 32 - __builtin_clz(x) : 0;
+#else
+  int b = 0;
+  while (x) {
+    ++b;
+    x >>= 1;
+  }
+  return b;
+#endif
+}
+
 // §10.4 Residual coding state, per axis and context: an adaptive Rice parameter (JPEG-LS style: the sum of
 // magnitudes A and the count N, halved at kRiceReset) and the models of the unary part; per axis, Rice parameter and
 // unary length, the model of the first low bit.
@@ -182,8 +204,11 @@ struct RiceState {
   uint32_t a = 8, n = 1;
   // §10.4.1 k = min { k >= 0 : N * 2^k >= A }
   int k() const {
-    int k = 0;
-    while ((uint64_t{n} << k) < a) ++k;
+    // Start from the difference of bit lengths, then correct by one: the same value as counting up from 0.
+    int k = bit_length(a) - bit_length(n);
+    if (k < 0) k = 0;
+    if ((uint64_t{n} << k) < a) ++k;
+    if (k > 0 && (uint64_t{n} << (k - 1)) >= a) --k;
     return k;  // <= 21: A / N never exceeds the largest magnitude 2^20 - 1 by more than the start value 8
   }
   void update(uint32_t magnitude) {

@@ -26,7 +26,7 @@ class RangeDecoder {
     const uint32_t mask = 0u - bit;
     code_ -= bound & mask;
     range_ = bit ? range_ - bound : bound;
-    m.update_branchless(bit);
+    m.update(bit);
     normalize();
     return static_cast<int>(bit);
   }
@@ -53,7 +53,7 @@ class RangeDecoder {
  private:
   // §5.5 Renormalisation.
   void normalize() {
-    // After one decision Range >= 2^24 / 2^16 * kProbMin = 2^14, so at most two bytes are needed.
+    // After one decision Range >= 2^24 / 2^16 * kProbMin > 2^14, so at most two bytes are needed.
     if (range_ < (1u << 24)) {
       range_ <<= 8;
       code_ = code_ << 8 | next_byte();

@@ -19,7 +19,7 @@ class RangeEncoder {
       low_ += bound;
       range_ -= bound;
     }
-    m.update(bit);
+    m.update(static_cast<uint32_t>(bit));
     while (range_ < (1u << 24)) {
       range_ <<= 8;
       shift_low();

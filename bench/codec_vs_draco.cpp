@@ -1,0 +1,221 @@
+// prm_bench_codec_vs_draco: the general-path PRM codec (issue 5) against Draco 1.5.5 (edgebreaker, level 10 =
+// speed 0, 12-bit positions), mesh by mesh, in one Google Benchmark run:
+//   - connectivity bits per vertex: ours (the connectivity section) vs Draco's standard and valence edgebreaker
+//     (method: Draco's whole stream for the same connectivity with every position (0, 0, 0); see bench/README.md);
+//   - total stream size at the same quantization;
+//   - decode speed in millions of vertices per second, both decoders timed by Google Benchmark in the same process.
+// After the benchmarks it prints one Markdown table (and, with --csv=FILE, a CSV).
+//
+//   build/bench/prm_bench_codec_vs_draco [--benchmark_min_time=0.2] [--csv=out.csv]
+#include <benchmark/benchmark.h>
+#include <draco/compression/decode.h>
+#include <draco/compression/expert_encode.h>
+#include <draco/core/decoder_buffer.h>
+#include <draco/core/encoder_buffer.h>
+#include <draco/mesh/mesh.h>
+
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "prm/codec.h"
+#include "test_meshes.h"
+
+namespace {
+
+using prm::codec::test::TestMesh;
+
+struct Row {
+  std::string name;
+  TestMesh mesh;
+  std::string refused;  // non-empty: our encoder refused it (with the reason)
+  prm::codec::EncodeReport report;
+  std::vector<uint8_t> ours;
+  std::vector<uint8_t> draco;          // level 10, 12 bits, Draco's own choice of edgebreaker method
+  size_t draco_standard_conn = 0;      // whole stream, positions all zero, standard edgebreaker
+  size_t draco_valence_conn = 0;       // same, valence edgebreaker
+  double ours_ns = 0, draco_ns = 0;    // decode time per call, from the benchmark run
+};
+std::vector<Row> g_rows;
+
+std::unique_ptr<draco::Mesh> to_draco(const TestMesh& m, bool zero_positions) {
+  auto dm = std::make_unique<draco::Mesh>();
+  dm->set_num_points(static_cast<uint32_t>(m.num_vertices()));
+  draco::GeometryAttribute ga;
+  ga.Init(draco::GeometryAttribute::POSITION, nullptr, 3, draco::DT_FLOAT32, false, 12, 0);
+  // One attribute value per point (identity mapping): Draco builds its corner table from these value indices, so
+  // equal positions do not merge vertices.
+  const int id = dm->AddAttribute(ga, true, static_cast<uint32_t>(m.num_vertices()));
+  draco::PointAttribute* att = dm->attribute(id);
+  for (size_t i = 0; i < m.num_vertices(); ++i) {
+    float p[3] = {static_cast<float>(m.xyz[3 * i]), static_cast<float>(m.xyz[3 * i + 1]),
+                  static_cast<float>(m.xyz[3 * i + 2])};
+    if (zero_positions) p[0] = p[1] = p[2] = 0;
+    att->SetAttributeValue(draco::AttributeValueIndex(static_cast<uint32_t>(i)), p);
+  }
+  for (size_t t = 0; t < m.num_triangles(); ++t) {
+    draco::Mesh::Face f;
+    for (int k = 0; k < 3; ++k) f[k] = draco::PointIndex(m.triangles[3 * t + k]);
+    dm->AddFace(f);
+  }
+  return dm;
+}
+
+// Draco at compression level 10 (speed 0), 12-bit positions; method -1 lets Draco choose, 0 standard, 2 valence.
+std::vector<uint8_t> draco_encode(const draco::Mesh& dm, int method) {
+  draco::ExpertEncoder enc(dm);
+  enc.SetSpeedOptions(0, 0);
+  enc.SetAttributeQuantization(0, 12);
+  enc.SetEncodingMethod(draco::MESH_EDGEBREAKER_ENCODING);
+  if (method >= 0) enc.options().SetGlobalInt("edgebreaker_method", method);
+  draco::EncoderBuffer buf;
+  if (!enc.EncodeToBuffer(&buf).ok()) return {};
+  return std::vector<uint8_t>(buf.data(), buf.data() + buf.size());
+}
+
+void prepare(const std::string& name, TestMesh mesh) {
+  Row r;
+  r.name = name;
+  r.mesh = std::move(mesh);
+  const TestMesh& m = r.mesh;
+  auto enc = prm::codec::encode(m.xyz.data(), m.num_vertices(), m.triangles.data(), m.num_triangles(), {},
+                                &r.report);
+  if (!enc.ok()) {
+    r.refused = std::string(prm::codec::error_name(enc.status.error)) + ": " + enc.status.message;
+  } else {
+    r.ours = std::move(enc.value);
+  }
+  r.draco = draco_encode(*to_draco(m, false), -1);
+  const auto zero = to_draco(m, true);
+  r.draco_standard_conn = draco_encode(*zero, 0).size();
+  r.draco_valence_conn = draco_encode(*zero, 2).size();
+  g_rows.push_back(std::move(r));
+}
+
+void BM_PrmDecode(benchmark::State& state, size_t i) {
+  const Row& r = g_rows[i];
+  size_t n = 0;
+  for (auto _ : state) {
+    auto d = prm::codec::decode(r.ours.data(), r.ours.size());
+    if (!d.ok()) state.SkipWithError(d.status.message.c_str());
+    n = d.value.num_vertices();
+    benchmark::DoNotOptimize(d.value.positions_f32.data());
+  }
+  state.counters["Mvertices/s"] =
+      benchmark::Counter(static_cast<double>(n) * state.iterations() / 1e6, benchmark::Counter::kIsRate);
+}
+
+void BM_DracoDecode(benchmark::State& state, size_t i) {
+  const Row& r = g_rows[i];
+  size_t n = 0;
+  for (auto _ : state) {
+    draco::DecoderBuffer buf;
+    buf.Init(reinterpret_cast<const char*>(r.draco.data()), r.draco.size());
+    draco::Decoder dec;
+    auto res = dec.DecodeMeshFromBuffer(&buf);
+    if (!res.ok()) state.SkipWithError("draco decode failed");
+    n = res.value()->num_points();
+    benchmark::DoNotOptimize(res.value().get());
+  }
+  state.counters["Mvertices/s"] =
+      benchmark::Counter(static_cast<double>(n) * state.iterations() / 1e6, benchmark::Counter::kIsRate);
+}
+
+// Keeps each benchmark's time per iteration for the table.
+class TableReporter : public benchmark::ConsoleReporter {
+ public:
+  void ReportRuns(const std::vector<Run>& runs) override {
+    for (const Run& run : runs) {
+      if (run.error_occurred || run.iterations == 0) continue;
+      times[run.benchmark_name()] = run.GetAdjustedRealTime() * 1e9 /
+                                    benchmark::GetTimeUnitMultiplier(run.time_unit);
+    }
+    ConsoleReporter::ReportRuns(runs);
+  }
+  std::map<std::string, double> times;  // ns per iteration
+};
+
+void load_all() {
+  namespace fs = std::filesystem;
+  using namespace prm::codec::test;
+  for (const std::string& p : list_files(PRM_SHARED_MESHES, {".off", ".ply", ".obj"}))
+    prepare(fs::path(p).filename().string(), load_mesh(p));
+  for (const char* f : {"bunny00.off", "refined_elephant.off", "armadillo.off", "camel.off", "cow.off",
+                        "elephant-with-holes.off", "elephant.off", "mech-holes-shark.off", "man.off", "homer.off",
+                        "knot1.off", "double-torus-example.off"})
+    prepare(std::string("cgal/") + f, load_mesh(std::string(PRM_CGAL_MESHES) + "/" + f));
+  prepare("gen/hex_patch_r150", hex_patch(150, true));
+  prepare("gen/icosphere_6", icosphere(6));
+  prepare("gen/torus_300x200", torus(300, 200));
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string csv_path;
+  std::vector<char*> args;
+  for (int i = 0; i < argc; ++i) {
+    if (std::strncmp(argv[i], "--csv=", 6) == 0)
+      csv_path = argv[i] + 6;
+    else
+      args.push_back(argv[i]);
+  }
+  int n = static_cast<int>(args.size());
+  benchmark::Initialize(&n, args.data());
+  load_all();
+  for (size_t i = 0; i < g_rows.size(); ++i) {
+    if (!g_rows[i].refused.empty()) continue;
+    benchmark::RegisterBenchmark(("prm_decode/" + g_rows[i].name).c_str(), BM_PrmDecode, i)
+        ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark(("draco_decode/" + g_rows[i].name).c_str(), BM_DracoDecode, i)
+        ->Unit(benchmark::kMillisecond);
+  }
+  TableReporter reporter;
+  benchmark::RunSpecifiedBenchmarks(&reporter);
+
+  std::printf("\n| mesh | V | conn bpv: PRM | Draco std | Draco valence | total bytes: PRM | Draco | PRM/Draco | "
+              "decode Mv/s: PRM | Draco | speed PRM/Draco |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  FILE* csv = csv_path.empty() ? nullptr : std::fopen(csv_path.c_str(), "w");
+  if (csv)
+    std::fprintf(csv, "mesh,vertices,prm_conn_bpv,draco_std_conn_bpv,draco_valence_conn_bpv,prm_bytes,draco_bytes,"
+                      "prm_draco_size_ratio,prm_decode_mvs,draco_decode_mvs,speed_ratio\n");
+  double sum_ours = 0, sum_draco = 0, sum_t_ours = 0, sum_t_draco = 0;
+  for (Row& r : g_rows) {
+    if (!r.refused.empty()) {
+      std::printf("| %s | %zu | refused: %s | | | | %zu | | | | |\n", r.name.c_str(), r.mesh.num_vertices(),
+                  r.refused.c_str(), r.draco.size());
+      continue;
+    }
+    const double v = r.report.vertices;
+    r.ours_ns = reporter.times["prm_decode/" + r.name];
+    r.draco_ns = reporter.times["draco_decode/" + r.name];
+    const double ours_mvs = r.ours_ns > 0 ? v / r.ours_ns * 1e3 : 0;
+    const double draco_mvs = r.draco_ns > 0 ? v / r.draco_ns * 1e3 : 0;
+    const double conn = 8.0 * r.report.connectivity_bytes / v, dstd = 8.0 * r.draco_standard_conn / v,
+                 dval = 8.0 * r.draco_valence_conn / v;
+    const double ratio = static_cast<double>(r.ours.size()) / r.draco.size();
+    std::printf("| %s | %u | %.3f | %.3f | %.3f | %zu | %zu | %.3f | %.2f | %.2f | %.2f |\n", r.name.c_str(),
+                r.report.vertices, conn, dstd, dval, r.ours.size(), r.draco.size(), ratio, ours_mvs, draco_mvs,
+                draco_mvs > 0 ? ours_mvs / draco_mvs : 0);
+    if (csv)
+      std::fprintf(csv, "%s,%u,%.4f,%.4f,%.4f,%zu,%zu,%.4f,%.3f,%.3f,%.3f\n", r.name.c_str(), r.report.vertices, conn,
+                   dstd, dval, r.ours.size(), r.draco.size(), ratio, ours_mvs, draco_mvs,
+                   draco_mvs > 0 ? ours_mvs / draco_mvs : 0);
+    if (r.name.rfind("gen/", 0) != 0) {
+      sum_ours += r.ours.size();
+      sum_draco += r.draco.size();
+      sum_t_ours += r.ours_ns;
+      sum_t_draco += r.draco_ns;
+    }
+  }
+  std::printf("\nReal meshes (all but gen/): total size PRM/Draco %.4f, total decode time PRM/Draco %.3f "
+              "(speed ratio %.2f)\n",
+              sum_ours / sum_draco, sum_t_ours / sum_t_draco, sum_t_draco / sum_t_ours);
+  if (csv) std::fclose(csv);
+  return 0;
+}
