@@ -30,15 +30,18 @@ constexpr uint8_t kRate[kRateSteps] = {1, 2, 2, 3, 3, 3, 3, 4, 4, 4, 4, 4, 4, 4,
 
 struct BitModel {
   uint16_t p = kProbInit;
-  uint8_t n = 0;
+  uint16_t n = 0;  // not a char type: a char store may alias the coder state and force reloads
 
-  void update(uint32_t bit) {
+#if defined(__GNUC__) || defined(__clang__)
+  __attribute__((always_inline))
+#endif
+  inline void update(uint32_t bit) {
     const uint32_t r = kRate[n];
     const uint32_t q = p;
     // Written with conditional moves: the bit is as unpredictable as the data.
     const uint32_t up = q + ((kProbOne - q) >> r), down = q - (q >> r);
     p = static_cast<uint16_t>(bit ? down : up);
-    n = static_cast<uint8_t>(n + (n < kRateSteps - 1));
+    n = static_cast<uint16_t>(n + (n < kRateSteps - 1));
   }
 };
 

@@ -18,6 +18,10 @@ struct ClosedMesh {
   std::vector<uint32_t> corner_vertex;   // 3 per triangle
   std::vector<int32_t> opp;              // 3 per triangle, all >= 0
   std::vector<uint8_t> is_dummy;         // per vertex
+  // Decoder, when there are dummies (§6.7): the output triangles and the output id of each vertex (UINT32_MAX for
+  // dummies). Without dummies the output is corner_vertex itself.
+  std::vector<uint32_t> output_triangles;
+  std::vector<uint32_t> old_to_new;
   uint32_t num_triangles() const { return static_cast<uint32_t>(corner_vertex.size() / 3); }
 };
 
@@ -43,12 +47,10 @@ Status plan_connectivity(const uint32_t* triangles, size_t num_triangles, size_t
 Status write_connectivity(const ConnectivityPlan& plan, std::vector<uint8_t>& payload);
 
 // §6.3-6.4 Reads the section at stream offset `offset`. `header_vertices` / `header_triangles` are the header's
-// counts of the output mesh (dummies removed), checked against what the section decodes to.
+// counts of the output mesh (dummies removed), checked against what the section decodes to. With dummies, also
+// fills mesh.output_triangles and mesh.old_to_new (§6.7).
 Status read_connectivity(const uint8_t* data, size_t size, uint64_t offset, const DecodeLimits& limits,
                          uint32_t header_vertices, uint32_t header_triangles, ClosedMesh& mesh);
 
-// §6.7 The output mesh: triangles without dummy vertices, vertex ids renumbered to skip dummies.
-// old_to_new[v] is the output id of closed-mesh vertex v (UINT32_MAX for dummies).
-void remove_dummies(const ClosedMesh& mesh, std::vector<uint32_t>& triangles, std::vector<uint32_t>& old_to_new);
 
 }  // namespace prm::codec

@@ -209,22 +209,39 @@ Status read_connectivity(const uint8_t* data, size_t size, uint64_t offset, cons
     return ok_status();
   }
   // §6.7 Dummy vertices: no edge joins two of them, each real vertex meets at most one of them, and every real
-  // vertex keeps a real triangle.
-  std::vector<uint32_t> dummy_of(nv, UINT32_MAX), real_tris(nv, 0);
-  uint64_t out_triangles = 0;
+  // vertex keeps a real triangle. The output triangles (renumbered without the dummies) are built in the same pass.
+  if (header_triangles > nt)
+    return make_status(Error::bad_connectivity, "6.7", clers_offset, "Triangle_Count exceeds the closed mesh");
+  std::vector<uint32_t>& old_to_new = mesh.old_to_new;
+  old_to_new.assign(nv, UINT32_MAX);
+  {
+    uint32_t n = 0;
+    for (uint32_t v = 0; v < nv; ++v)
+      if (!mesh.is_dummy[v]) old_to_new[v] = n++;
+  }
+  std::vector<uint32_t> dummy_of(nv, UINT32_MAX);
+  std::vector<uint8_t> has_real(nv, 0);
+  std::vector<uint32_t>& out = mesh.output_triangles;
+  out.clear();
+  out.reserve(size_t{3} * header_triangles);
   for (uint32_t t = 0; t < nt; ++t) {
     const uint32_t* f = &mesh.corner_vertex[3 * t];
-    int dummies = mesh.is_dummy[f[0]] + mesh.is_dummy[f[1]] + mesh.is_dummy[f[2]];
+    const int dummies = mesh.is_dummy[f[0]] + mesh.is_dummy[f[1]] + mesh.is_dummy[f[2]];
     if (dummies > 1)
       return make_status(Error::non_manifold_result, "6.7", clers_offset, "an edge joins two dummy vertices");
     if (dummies == 0) {
-      ++out_triangles;
-      for (int k = 0; k < 3; ++k) ++real_tris[f[k]];
+      if (out.size() == size_t{3} * header_triangles)
+        return make_status(Error::bad_connectivity, "6.7", clers_offset,
+                           "more triangles than Triangle_Count " + std::to_string(header_triangles));
+      for (int k = 0; k < 3; ++k) {
+        has_real[f[k]] = 1;
+        out.push_back(old_to_new[f[k]]);
+      }
       continue;
     }
+    const uint32_t d = mesh.is_dummy[f[0]] ? f[0] : mesh.is_dummy[f[1]] ? f[1] : f[2];
     for (int k = 0; k < 3; ++k) {
-      if (mesh.is_dummy[f[k]]) continue;
-      const uint32_t d = mesh.is_dummy[f[0]] ? f[0] : mesh.is_dummy[f[1]] ? f[1] : f[2];
+      if (f[k] == d) continue;
       if (dummy_of[f[k]] != UINT32_MAX && dummy_of[f[k]] != d)
         return make_status(Error::non_manifold_result, "6.7", clers_offset,
                            "a vertex lies on two holes (pinched boundary)");
@@ -232,30 +249,13 @@ Status read_connectivity(const uint8_t* data, size_t size, uint64_t offset, cons
     }
   }
   for (uint32_t v = 0; v < nv; ++v)
-    if (!mesh.is_dummy[v] && real_tris[v] == 0)
+    if (!mesh.is_dummy[v] && !has_real[v])
       return make_status(Error::non_manifold_result, "6.7", clers_offset, "a vertex has only dummy triangles");
-  if (out_triangles != header_triangles)
+  if (out.size() != size_t{3} * header_triangles)
     return make_status(Error::bad_connectivity, "6.7", clers_offset,
                        "Triangle_Count " + std::to_string(header_triangles) + " differs from the decoded " +
-                           std::to_string(out_triangles));
+                           std::to_string(out.size() / 3));
   return ok_status();
-}
-
-void remove_dummies(const ClosedMesh& mesh, std::vector<uint32_t>& triangles, std::vector<uint32_t>& old_to_new) {
-  old_to_new.assign(mesh.num_vertices, UINT32_MAX);
-  uint32_t n = 0;
-  for (uint32_t v = 0; v < mesh.num_vertices; ++v)
-    if (!mesh.is_dummy[v]) old_to_new[v] = n++;
-  triangles.clear();
-  const uint32_t nt = mesh.num_triangles();
-  triangles.reserve(size_t{3} * nt);
-  for (uint32_t t = 0; t < nt; ++t) {
-    const uint32_t* f = &mesh.corner_vertex[3 * t];
-    if (mesh.is_dummy[f[0]] || mesh.is_dummy[f[1]] || mesh.is_dummy[f[2]]) continue;
-    triangles.push_back(old_to_new[f[0]]);
-    triangles.push_back(old_to_new[f[1]]);
-    triangles.push_back(old_to_new[f[2]]);
-  }
 }
 
 }  // namespace prm::codec

@@ -233,11 +233,10 @@ Result<DecodedMesh> decode(const uint8_t* data, size_t size, const DecodeOptions
       out.triangles = std::move(mesh.corner_vertex);
       out.quantized = std::move(q);
     } else {
-      std::vector<uint32_t> old_to_new;
-      remove_dummies(mesh, out.triangles, old_to_new);
+      out.triangles = std::move(mesh.output_triangles);
       out.quantized.resize(size_t{3} * h.vertices);
       for (uint32_t v = 0; v < mesh.num_vertices; ++v) {
-        const uint32_t n = old_to_new[v];
+        const uint32_t n = mesh.old_to_new[v];
         if (n == UINT32_MAX) continue;
         for (int k = 0; k < 3; ++k) out.quantized[3 * size_t{n} + k] = q[3 * size_t{v} + k];
       }

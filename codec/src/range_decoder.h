@@ -10,6 +10,12 @@
 
 #include "adaptive_model.h"
 
+#if defined(__GNUC__) || defined(__clang__)
+#define PRM_ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define PRM_ALWAYS_INLINE inline
+#endif
+
 namespace prm::codec {
 
 class RangeDecoder {
@@ -18,7 +24,7 @@ class RangeDecoder {
   void init(const uint8_t* data, size_t size);
 
   // §5.3 One bit with model m.
-  int decode_bit(BitModel& m) {
+  PRM_ALWAYS_INLINE int decode_bit(BitModel& m) {
     // Written without data-dependent branches: the bit is as unpredictable as the data.
     const uint32_t p = m.p;
     const uint32_t bound = (range_ >> kProbBits) * p;
@@ -32,7 +38,7 @@ class RangeDecoder {
   }
 
   // §5.4 `count` (0..24) equiprobable bits, most significant first.
-  uint32_t decode_direct(int count) {
+  PRM_ALWAYS_INLINE uint32_t decode_direct(int count) {
     uint32_t v = 0;
     for (int i = 0; i < count; ++i) {
       range_ >>= 1;
@@ -52,7 +58,7 @@ class RangeDecoder {
 
  private:
   // §5.5 Renormalisation.
-  void normalize() {
+  PRM_ALWAYS_INLINE void normalize() {
     // After one decision Range >= 2^24 / 2^16 * kProbMin > 2^14, so at most two bytes are needed.
     if (range_ < (1u << 24)) {
       range_ <<= 8;
