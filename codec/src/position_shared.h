@@ -103,7 +103,8 @@ inline bool predict_position(const ClosedMesh& mesh, const std::vector<uint32_t>
                              uint32_t v, uint32_t previous, const std::array<uint32_t, 3>& lo,
                              const std::array<uint32_t, 3>& hi, DegreeOrder& order, uint32_t* mark,
                              Prediction& out) {
-  auto done = [&](uint32_t x) { return x != v && order.done(x); };  // decoded before v
+  // Neighbours are never v itself (no triangle repeats a vertex); only the far vertex z of a parallelogram can be
+  // (two triangles on the same three vertices).
   const uint32_t* cv = mesh.corner_vertex.data();
   const int32_t* opp = mesh.opp.data();
   int64_t sum[3] = {0, 0, 0}, lo_p[3] = {INT64_MAX, INT64_MAX, INT64_MAX}, hi_p[3] = {INT64_MIN, INT64_MIN, INT64_MIN};
@@ -111,14 +112,16 @@ inline bool predict_position(const ClosedMesh& mesh, const std::vector<uint32_t>
   int64_t n = 0;
   const uint32_t c0 = vertex_corner[v];
   uint32_t c = c0;
+  // Along the walk, corner c's y is the previous corner's x: carry it and whether it is decoded.
+  uint32_t x = cv[corner_next(c)], y = cv[corner_prev(c)];
+  bool dx = order.done(x), dy = order.done(y);
   do {
-    const uint32_t x = cv[corner_next(c)], y = cv[corner_prev(c)];
     if (mark[x] == v) return false;
     mark[x] = v;
     order.push_neighbour(x);
-    if (done(x) && done(y)) {
+    if (dx && dy) {
       const uint32_t z = cv[static_cast<uint32_t>(opp[c])];
-      if (done(z)) {
+      if (z != v && order.done(z)) {
         const uint32_t *qx = q + 3 * size_t{x}, *qy = q + 3 * size_t{y}, *qz = q + 3 * size_t{z};
         for (int k = 0; k < 3; ++k) {
           const int64_t a = qx[k], b = qy[k], d = qz[k];
@@ -131,7 +134,12 @@ inline bool predict_position(const ClosedMesh& mesh, const std::vector<uint32_t>
         ++n;
       }
     }
-    c = fan_next(opp, c);
+    const uint32_t d = static_cast<uint32_t>(opp[corner_prev(c)]);  // across the edge v -> x
+    c = corner_prev(d);
+    y = x;
+    dy = dx;
+    x = cv[d];
+    dx = order.done(x);
   } while (c != c0);
   out.parallelograms = static_cast<int>(n);
   if (n > 0) {
@@ -148,7 +156,7 @@ inline bool predict_position(const ClosedMesh& mesh, const std::vector<uint32_t>
   c = c0;
   do {
     const uint32_t x = cv[corner_next(c)];
-    if (done(x)) {
+    if (order.done(x)) {
       for (int k = 0; k < 3; ++k) nsum[k] += q[3 * size_t{x} + k];
       ++nn;
     }
