@@ -50,6 +50,9 @@ Status read_positions(const uint8_t* data, size_t size, uint64_t offset, const C
   if (size < 4) return make_status(Error::truncated, "5.6", offset + size, "position data shorter than 4 bytes");
   std::vector<uint32_t> vc;
   vertex_corners(mesh, vc);
+  for (uint32_t v = 0; v < mesh.num_vertices; ++v)  // every id has a corner by §6.4; checked, not assumed
+    if (vc[v] == UINT32_MAX)
+      return make_status(Error::bad_connectivity, "6.4.8", offset, "a vertex has no triangle");
   DegreeOrder order(mesh);
   RangeDecoder rc;
   rc.init(data, size);
