@@ -15,9 +15,11 @@ enum class MeshFormat { Auto, Obj, Ply, Off, Stl, Gltf, Glb };
 struct ReadOptions {
   MeshFormat format = MeshFormat::Auto;  // Auto: from the file extension, then from the content
   // Coincident vertices are welded: exact position match when weld_tolerance == 0 (the default), otherwise
-  // vertices closer than weld_tolerance (absolute units) are merged. STL and glTF files need this to be connected.
+  // vertices closer than weld_tolerance (absolute units) are merged. Auto welds the formats that store a vertex per
+  // corner or per primitive (STL, glTF/GLB), which need it to be connected, and leaves the indexed formats as they are.
+  enum class Weld { Auto, Always, Never };
+  Weld weld = Weld::Auto;
   double weld_tolerance = 0.0;
-  bool weld = true;
   bool drop_unreferenced = true;  // vertices no face uses are removed (and counted in the report)
   bool keep_properties = true;    // PLY: keep extra per-vertex / per-face scalar properties
 };

@@ -1,0 +1,46 @@
+// What a mesh is made of, and what is wrong with it: `prm info`.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "prm/mesh.h"
+
+namespace prm {
+
+struct ComponentReport {
+  size_t vertices = 0, faces = 0, edges = 0, boundary_loops = 0;
+  long euler = 0;     // V - E + F
+  bool manifold = true;
+  int genus = -1;     // (2 - euler - boundary_loops) / 2 for a manifold, oriented component; -1 otherwise
+};
+
+struct MeshReport {
+  size_t vertices = 0, faces = 0, edges = 0;
+  size_t unreferenced_vertices = 0;
+  size_t components = 0;
+  size_t boundary_edges = 0, boundary_loops = 0;
+  size_t non_manifold_edges = 0;       // edges with three or more faces
+  size_t non_manifold_vertices = 0;    // vertices whose faces form more than one fan
+  size_t repeated_index_faces = 0;     // a face that uses one vertex twice
+  size_t zero_area_faces = 0;          // distinct vertices, zero area (collinear or coincident points)
+  size_t duplicate_faces = 0;          // same three vertices as an earlier face (either orientation)
+  size_t inconsistent_edges = 0;       // two faces traverse the edge in the same direction
+  long euler = 0;
+  std::vector<ComponentReport> per_component;  // sorted by decreasing face count
+  Vec3 bbox_min{0, 0, 0}, bbox_max{0, 0, 0};
+  double diagonal = 0;
+  // First offenders, for messages ("edge (12, 40) has 3 faces").
+  std::vector<std::string> examples;
+
+  bool oriented() const { return inconsistent_edges == 0; }
+  bool manifold() const { return non_manifold_edges == 0 && non_manifold_vertices == 0; }
+  bool closed() const { return boundary_edges == 0; }
+  bool clean() const { return repeated_index_faces == 0 && zero_area_faces == 0 && duplicate_faces == 0; }
+  int genus_sum() const;  // sum over components (-1 when a component has no genus)
+};
+
+MeshReport validate_mesh(const Mesh& mesh);
+
+}  // namespace prm
