@@ -16,6 +16,7 @@ class Failure : public std::runtime_error {
 
 // One line per command, in the order `prm --help` lists them.
 void add_info_command(CLI::App& root);
+void add_compare_command(CLI::App& root);
 void add_repair_command(CLI::App& root);
 void add_encode_command(CLI::App& root);
 void add_decode_command(CLI::App& root);

@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "prm 0.1.0");
 
   add_info_command(app);
+  add_compare_command(app);
   add_repair_command(app);
   add_encode_command(app);
   add_decode_command(app);
