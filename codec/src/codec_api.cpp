@@ -13,6 +13,7 @@
 
 namespace prm::codec {
 
+// §4.4 Error names.
 const char* error_name(Error error) {
   switch (error) {
     case Error::ok: return "ok";
@@ -241,6 +242,7 @@ Result<DecodedMesh> decode(const uint8_t* data, size_t size, const DecodeOptions
         for (int k = 0; k < 3; ++k) out.quantized[3 * size_t{n} + k] = q[3 * size_t{v} + k];
       }
     }
+    // §10.5 Output positions: o + q * s in double, rounded to float for float32 output.
     if (options.positions == PositionOutput::float32) {
       out.positions_f32.resize(out.quantized.size());
       for (size_t i = 0; i < out.quantized.size(); ++i)

@@ -75,6 +75,7 @@ class RangeDecoder {
     return 0;
   }
 
+  // §5.1 Decoder state.
   const uint8_t* data_ = nullptr;
   size_t size_ = 0;
   size_t pos_ = 0;
