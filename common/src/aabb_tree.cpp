@@ -1,143 +1,370 @@
 #include "prm/aabb_tree.h"
 
-#include <algorithm>
-#include <cmath>
-#include <numeric>
+#include <tbb/parallel_for.h>
+#include <tbb/parallel_invoke.h>
 
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <string>
+
+#include "prm/error.h"
+#include "prm/point_triangle_distance.h"
 #include "prm/vec3.h"
 
 namespace prm {
+namespace {
 
-Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
-  const Vec3 ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
-  if (d1 <= 0 && d2 <= 0) return a;
-  const Vec3 bp = p - b;
-  const double d3 = dot(ab, bp), d4 = dot(ac, bp);
-  if (d3 >= 0 && d4 <= d3) return b;
-  const double vc = d1 * d4 - d3 * d2;
-  if (vc <= 0 && d1 >= 0 && d3 <= 0) return a + ab * (d1 / (d1 - d3));
-  const Vec3 cp = p - c;
-  const double d5 = dot(ab, cp), d6 = dot(ac, cp);
-  if (d6 >= 0 && d5 <= d6) return c;
-  const double vb = d5 * d2 - d1 * d6;
-  if (vb <= 0 && d2 >= 0 && d6 <= 0) return a + ac * (d2 / (d2 - d6));
-  const double va = d3 * d6 - d5 * d4;
-  if (va <= 0 && (d4 - d3) >= 0 && (d5 - d6) >= 0) return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-  const double denom = 1.0 / (va + vb + vc);
-  if (!std::isfinite(denom)) return a;  // a degenerate triangle: its vertices were checked above
-  return a + ab * (vb * denom) + ac * (vc * denom);
+constexpr int kBins = 16;
+constexpr uint32_t kMaxLeafSize = 8;     // SAH may stop here when a split does not pay
+constexpr uint32_t kMinSplitSize = 3;    // ranges of at most 2 triangles are always leaves
+constexpr uint32_t kParallelSize = 4096; // ranges larger than this build their children in parallel
+constexpr int kSahMaxDepth = 40;         // below this depth, split at the median: bounds the depth (and the query
+                                         // stack) even for pathological inputs such as many identical triangles
+constexpr int kStackSize = 128;          // > kSahMaxDepth + log2(2^32)
+constexpr double kTraversalCost = 1.0;   // SAH costs relative to one point-triangle test
+constexpr double kTriangleCost = 1.0;
+
+struct Box {
+  Vec3 lo{HUGE_VAL, HUGE_VAL, HUGE_VAL};
+  Vec3 hi{-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  void add(const Vec3& p) {
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], p[k]);
+      hi[k] = std::max(hi[k], p[k]);
+    }
+  }
+  void add(const Box& b) {
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], b.lo[k]);
+      hi[k] = std::max(hi[k], b.hi[k]);
+    }
+  }
+  bool valid() const { return lo[0] <= hi[0]; }
+  double half_area() const {
+    if (!valid()) return 0;
+    const double x = hi[0] - lo[0], y = hi[1] - lo[1], z = hi[2] - lo[2];
+    return x * y + y * z + z * x;
+  }
+};
+
+float round_down(double v) {
+  float f = static_cast<float>(v);
+  if (static_cast<double>(f) > v) f = std::nextafter(f, -HUGE_VALF);
+  return f;
+}
+float round_up(double v) {
+  float f = static_cast<float>(v);
+  if (static_cast<double>(f) < v) f = std::nextafter(f, HUGE_VALF);
+  return f;
+}
+
+struct BuildTriangle {
+  Box box;
+  Vec3 centroid;
+};
+
+// Builds the subtree of one node; children pairs are claimed from a shared atomic counter, so the node array is
+// laid out in allocation order, which differs between runs only in the parallel part (the tree itself does not).
+class AabbTreeBuilder {
+ public:
+  AabbTreeBuilder(std::vector<uint32_t>& ids, const std::vector<BuildTriangle>& tris, std::vector<float>& boxes,
+                  std::vector<uint32_t>& links)
+      : ids_(ids), tris_(tris), boxes_(boxes), links_(links) {}
+
+  std::atomic<uint32_t> next{2};  // node 0 is the root, node 1 unused: children pairs start at even indices
+
+  void build(uint32_t node, uint32_t begin, uint32_t end, int depth) {
+    Box box, cbox;
+    for (uint32_t i = begin; i < end; ++i) {
+      box.add(tris_[ids_[i]].box);
+      cbox.add(tris_[ids_[i]].centroid);
+    }
+    for (int k = 0; k < 3; ++k) {
+      boxes_[6 * node + k] = round_down(box.lo[k]);
+      boxes_[6 * node + 3 + k] = round_up(box.hi[k]);
+    }
+    const uint32_t count = end - begin;
+    if (count < kMinSplitSize) return make_leaf(node, begin, count);
+
+    int axis = 0;
+    for (int k = 1; k < 3; ++k)
+      if (cbox.hi[k] - cbox.lo[k] > cbox.hi[axis] - cbox.lo[axis]) axis = k;
+    const double extent = cbox.hi[axis] - cbox.lo[axis];
+
+    uint32_t mid = begin + count / 2;
+    bool use_median = depth >= kSahMaxDepth || !(extent > 0);
+    if (!use_median) {
+      // Binned SAH along the widest centroid axis.
+      const double scale = kBins / extent;
+      auto bin_of = [&](uint32_t id) {
+        const int b = static_cast<int>((tris_[id].centroid[axis] - cbox.lo[axis]) * scale);
+        return std::min(std::max(b, 0), kBins - 1);
+      };
+      Box bins[kBins];
+      uint32_t counts[kBins] = {};
+      for (uint32_t i = begin; i < end; ++i) {
+        const int b = bin_of(ids_[i]);
+        bins[b].add(tris_[ids_[i]].box);
+        ++counts[b];
+      }
+      double right_area[kBins];
+      uint32_t right_count[kBins];
+      Box acc;
+      uint32_t n = 0;
+      for (int b = kBins - 1; b > 0; --b) {
+        acc.add(bins[b]);
+        n += counts[b];
+        right_area[b] = acc.half_area();
+        right_count[b] = n;
+      }
+      acc = Box();
+      n = 0;
+      double best_cost = HUGE_VAL;
+      int best_split = -1;
+      for (int b = 1; b < kBins; ++b) {  // split between bins b-1 and b
+        acc.add(bins[b - 1]);
+        n += counts[b - 1];
+        if (n == 0 || right_count[b] == 0) continue;
+        const double cost = acc.half_area() * n + right_area[b] * right_count[b];
+        if (cost < best_cost) {
+          best_cost = cost;
+          best_split = b;
+        }
+      }
+      const double area = box.half_area();
+      const double leaf_cost = kTriangleCost * count;
+      const double split_cost =
+          area > 0 ? kTraversalCost + kTriangleCost * best_cost / area : kTraversalCost + leaf_cost;
+      if (best_split < 0) {
+        use_median = true;
+      } else if (count <= kMaxLeafSize && leaf_cost <= split_cost) {
+        return make_leaf(node, begin, count);
+      } else {
+        uint32_t* first = ids_.data() + begin;
+        mid = static_cast<uint32_t>(
+            std::partition(first, ids_.data() + end, [&](uint32_t id) { return bin_of(id) < best_split; }) -
+            ids_.data());
+        if (mid == begin || mid == end) use_median = true;
+      }
+    }
+    if (use_median) {
+      if (count <= kMaxLeafSize && !(extent > 0)) return make_leaf(node, begin, count);
+      mid = begin + count / 2;
+      std::nth_element(ids_.data() + begin, ids_.data() + mid, ids_.data() + end, [&](uint32_t x, uint32_t y) {
+        return tris_[x].centroid[axis] < tris_[y].centroid[axis];
+      });
+    }
+
+    const uint32_t left = next.fetch_add(2);
+    links_[2 * node] = left;
+    links_[2 * node + 1] = 0;
+    if (count > kParallelSize) {
+      tbb::parallel_invoke([&] { build(left, begin, mid, depth + 1); },
+                           [&] { build(left + 1, mid, end, depth + 1); });
+    } else {
+      build(left, begin, mid, depth + 1);
+      build(left + 1, mid, end, depth + 1);
+    }
+  }
+
+ private:
+  void make_leaf(uint32_t node, uint32_t begin, uint32_t count) {
+    links_[2 * node] = begin;
+    links_[2 * node + 1] = count;
+  }
+
+  std::vector<uint32_t>& ids_;
+  const std::vector<BuildTriangle>& tris_;
+  std::vector<float>& boxes_;
+  std::vector<uint32_t>& links_;
+};
+
+}  // namespace
+
+AabbTree::AabbTree(const Mesh& mesh) { build(mesh.positions, mesh.triangles); }
+
+AabbTree::AabbTree(const std::vector<Vec3>& positions, const std::vector<Tri>& triangles) {
+  build(positions, triangles);
+}
+
+void AabbTree::build(const std::vector<Vec3>& positions, const std::vector<Tri>& triangles) {
+  const size_t n = triangles.size();
+  if (n == 0) return;
+  if (n >= kNoFace / 2) throw InputError("mesh has too many triangles for the distance tree");
+  const size_t nv = positions.size();
+  std::vector<BuildTriangle> tris(n);
+  std::atomic<size_t> bad_index{n}, bad_value{n};
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t t = r.begin(); t != r.end(); ++t) {
+      const Tri& f = triangles[t];
+      if (f[0] >= nv || f[1] >= nv || f[2] >= nv) {
+        size_t cur = bad_index.load();
+        while (t < cur && !bad_index.compare_exchange_weak(cur, t)) {
+        }
+        continue;
+      }
+      BuildTriangle& b = tris[t];
+      for (int k = 0; k < 3; ++k) b.box.add(positions[f[k]]);
+      b.centroid = (positions[f[0]] + positions[f[1]] + positions[f[2]]) * (1.0 / 3.0);
+      if (!std::isfinite(b.box.lo[0] + b.box.lo[1] + b.box.lo[2] + b.box.hi[0] + b.box.hi[1] + b.box.hi[2])) {
+        size_t cur = bad_value.load();
+        while (t < cur && !bad_value.compare_exchange_weak(cur, t)) {
+        }
+      }
+    }
+  });
+  if (bad_index.load() < n)
+    throw InputError("triangle " + std::to_string(bad_index.load()) + " refers to a vertex that does not exist (" +
+                     std::to_string(nv) + " vertices)");
+  if (bad_value.load() < n)
+    throw InputError("triangle " + std::to_string(bad_value.load()) + " has a vertex with a non-finite coordinate");
+
+  ids_.resize(n);
+  for (size_t t = 0; t < n; ++t) ids_[t] = static_cast<uint32_t>(t);
+  const size_t max_nodes = 2 * n + 1;
+  std::vector<float> boxes(6 * max_nodes, 0.0f);
+  std::vector<uint32_t> links(2 * max_nodes, 0);
+  AabbTreeBuilder builder(ids_, tris, boxes, links);
+  builder.build(0, 0, static_cast<uint32_t>(n), 0);
+
+  const size_t used = builder.next.load();
+  nodes_.resize(used);
+  for (size_t i = 0; i < used; ++i) {
+    Node& node = nodes_[i];
+    for (int k = 0; k < 3; ++k) {
+      node.lo[k] = boxes[6 * i + k];
+      node.hi[k] = boxes[6 * i + 3 + k];
+    }
+    node.first = links[2 * i];
+    node.count = links[2 * i + 1];
+  }
+  if (used > 1) {  // the unused slot 1 gets an empty box so that nothing ever enters it
+    nodes_[1] = Node{{HUGE_VALF, HUGE_VALF, HUGE_VALF}, {-HUGE_VALF, -HUGE_VALF, -HUGE_VALF}, 0, 0};
+  }
+  nodes_.shrink_to_fit();
+
+  triangles_.resize(n);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t k = r.begin(); k != r.end(); ++k) {
+      const Tri& f = triangles[ids_[k]];
+      triangles_[k] = Triangle{positions[f[0]], positions[f[1]], positions[f[2]]};
+    }
+  });
 }
 
 namespace {
-constexpr uint32_t kLeafSize = 4;
 
-double box_distance2(const Vec3& p, const Vec3& lo, const Vec3& hi) {
-  double d = 0;
-  for (size_t k = 0; k < 3; ++k) {
-    const double e = p[k] < lo[k] ? lo[k] - p[k] : p[k] > hi[k] ? p[k] - hi[k] : 0.0;
-    d += e * e;
+inline double box_distance2(const float* lo, const float* hi, const Vec3& p) {
+  double d2 = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double below = static_cast<double>(lo[k]) - p[k];
+    const double above = p[k] - static_cast<double>(hi[k]);
+    const double e = std::max(std::max(below, above), 0.0);
+    d2 += e * e;
   }
-  return d;
+  return d2;
 }
+
 }  // namespace
 
-AabbTree::AabbTree(const Mesh& mesh) {
-  const size_t n = mesh.triangles.size();
-  if (n == 0) return;
-  std::vector<Vec3> centroid(n);
-  std::vector<uint32_t> order(n);
-  for (uint32_t f = 0; f < n; ++f) {
-    const Tri& t = mesh.triangles[f];
-    centroid[f] = (mesh.positions[t[0]] + mesh.positions[t[1]] + mesh.positions[t[2]]) * (1.0 / 3.0);
-    order[f] = f;
-  }
-  nodes_.reserve(2 * n / kLeafSize + 2);
-  build(mesh, 0, static_cast<uint32_t>(n), order, centroid);
-  // Triangles in leaf order, so that a leaf's triangles are contiguous.
-  tris_.resize(n);
-  face_ = std::move(order);
-  for (size_t i = 0; i < n; ++i) {
-    const Tri& t = mesh.triangles[face_[i]];
-    tris_[i] = {mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]};
-  }
+AabbTree::Hit AabbTree::closest(const Vec3& p) const {
+  Hit hit;
+  search(p, hit, HUGE_VAL);
+  return hit;
 }
-
-uint32_t AabbTree::build(const Mesh& mesh, uint32_t begin, uint32_t end, std::vector<uint32_t>& order,
-                         const std::vector<Vec3>& centroid) {
-  const uint32_t index = static_cast<uint32_t>(nodes_.size());
-  nodes_.push_back({});
-  Vec3 lo = mesh.positions[mesh.triangles[order[begin]][0]], hi = lo;
-  Vec3 clo = centroid[order[begin]], chi = clo;
-  for (uint32_t i = begin; i < end; ++i) {
-    for (uint32_t v : mesh.triangles[order[i]])
-      for (size_t k = 0; k < 3; ++k) {
-        lo[k] = std::min(lo[k], mesh.positions[v][k]);
-        hi[k] = std::max(hi[k], mesh.positions[v][k]);
-      }
-    for (size_t k = 0; k < 3; ++k) {
-      clo[k] = std::min(clo[k], centroid[order[i]][k]);
-      chi[k] = std::max(chi[k], centroid[order[i]][k]);
-    }
-  }
-  nodes_[index].lo = lo;
-  nodes_[index].hi = hi;
-  if (end - begin <= kLeafSize) {
-    nodes_[index].first = begin;
-    nodes_[index].count = end - begin;
-    return index;
-  }
-  size_t axis = 0;
-  for (size_t k = 1; k < 3; ++k)
-    if (chi[k] - clo[k] > chi[axis] - clo[axis]) axis = k;
-  const uint32_t mid = begin + (end - begin) / 2;
-  std::nth_element(order.begin() + begin, order.begin() + mid, order.begin() + end,
-                   [&](uint32_t x, uint32_t y) { return centroid[x][axis] < centroid[y][axis]; });
-  build(mesh, begin, mid, order, centroid);
-  const uint32_t right = build(mesh, mid, end, order, centroid);
-  nodes_[index].first = right;
-  nodes_[index].count = 0;
-  return index;
-}
-
-AabbTree::Hit AabbTree::closest(const Vec3& p) const { return closest(p, HUGE_VAL); }
 
 AabbTree::Hit AabbTree::closest(const Vec3& p, double bound2) const {
-  Hit best;
-  best.distance2 = bound2;
-  uint32_t stack[128];
+  Hit hit;
+  search(p, hit, bound2);
+  return hit;
+}
+
+void AabbTree::closest(const Vec3& p, Hit& hint) const { search(p, hint, hint.found() ? norm2(p - hint.point) : HUGE_VAL); }
+
+void AabbTree::search(const Vec3& p, Hit& hit, double best) const {
+  hit.distance2 = best;
+  if (nodes_.empty()) return;
+
+  struct Entry {
+    uint32_t node;
+    double distance2;
+  };
+  Entry stack[kStackSize];
   int top = 0;
-  stack[top++] = 0;
-  while (top > 0) {
-    const Node& n = nodes_[stack[--top]];
-    if (box_distance2(p, n.lo, n.hi) >= best.distance2) continue;
-    if (n.count) {
-      for (uint32_t i = n.first; i < n.first + n.count; ++i) {
-        const Vec3 q = closest_point_on_triangle(p, tris_[i].a, tris_[i].b, tris_[i].c);
-        const double d2 = norm2(q - p);
-        if (d2 < best.distance2) {
-          best.distance2 = d2;
-          best.point = q;
-          best.face = face_[i];
+  uint32_t current = 0;
+  if (box_distance2(nodes_[0].lo, nodes_[0].hi, p) >= best) return;
+  for (;;) {
+    const Node& node = nodes_[current];
+    bool descend = false;
+    if (node.count > 0) {
+      for (uint32_t k = node.first, end = node.first + node.count; k < end; ++k) {
+        const Triangle& t = triangles_[k];
+        const Vec3 q = closest_point_on_triangle(p, t.a, t.b, t.c);
+        const double d2 = norm2(p - q);
+        if (d2 < best) {
+          best = d2;
+          hit.point = q;
+          hit.face = ids_[k];
         }
       }
-      continue;
-    }
-    // Visit the nearer child first (pushed last).
-    const uint32_t left = static_cast<uint32_t>(&n - nodes_.data()) + 1, right = n.first;
-    const double dl = box_distance2(p, nodes_[left].lo, nodes_[left].hi);
-    const double dr = box_distance2(p, nodes_[right].lo, nodes_[right].hi);
-    if (top + 2 > 128) continue;  // depth is O(log n): never reached
-    if (dl < dr) {
-      stack[top++] = right;
-      stack[top++] = left;
+      if (best == 0) break;
     } else {
-      stack[top++] = left;
-      stack[top++] = right;
+      const Node& l = nodes_[node.first];
+      const Node& r = nodes_[node.first + 1];
+      double dl = box_distance2(l.lo, l.hi, p), dr = box_distance2(r.lo, r.hi, p);
+      uint32_t near = node.first, far = node.first + 1;
+      if (dr < dl) {
+        std::swap(dl, dr);
+        std::swap(near, far);
+      }
+      if (dl < best) {
+        if (dr < best) stack[top++] = Entry{far, dr};
+        current = near;
+        descend = true;
+      }
+    }
+    if (descend) continue;
+    // Pop the next subtree that may still hold a closer point.
+    bool found = false;
+    while (top > 0) {
+      const Entry e = stack[--top];
+      if (e.distance2 < best) {
+        current = e.node;
+        found = true;
+        break;
+      }
+    }
+    if (!found) break;
+  }
+  hit.distance2 = best;
+}
+
+std::array<Vec3, 2> AabbTree::bounds() const {
+  if (nodes_.empty()) return {Vec3{0, 0, 0}, Vec3{0, 0, 0}};
+  Box box;
+  for (const Triangle& t : triangles_) {
+    box.add(t.a);
+    box.add(t.b);
+    box.add(t.c);
+  }
+  return {box.lo, box.hi};
+}
+
+int AabbTree::depth() const {
+  if (nodes_.empty()) return 0;
+  int deepest = 0;
+  std::vector<std::pair<uint32_t, int>> todo{{0u, 1}};
+  while (!todo.empty()) {
+    const auto [n, d] = todo.back();
+    todo.pop_back();
+    deepest = std::max(deepest, d);
+    if (nodes_[n].count == 0) {
+      todo.push_back({nodes_[n].first, d + 1});
+      todo.push_back({nodes_[n].first + 1, d + 1});
     }
   }
-  if (best.face == UINT32_MAX && bound2 != HUGE_VAL) return closest(p, HUGE_VAL);  // the bound was too tight
-  return best;
+  return deepest;
 }
 
 }  // namespace prm

@@ -1,125 +1,99 @@
 #include "prm/metro_distance.h"
 
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_reduce.h>
+#include <tbb/parallel_for.h>
 
 #include <algorithm>
 #include <cmath>
-#include <random>
+#include <string>
+#include <utility>
 
+#include "prm/error.h"
+#include "prm/progress.h"
 #include "prm/vec3.h"
 
 namespace prm {
 namespace {
 
-double diagonal_of(const Mesh& m) {
-  if (m.positions.empty()) return 0;
-  Vec3 lo = m.positions[0], hi = lo;
-  for (const Vec3& p : m.positions)
-    for (size_t k = 0; k < 3; ++k) {
-      lo[k] = std::min(lo[k], p[k]);
-      hi[k] = std::max(hi[k], p[k]);
-    }
-  return norm(hi - lo);
-}
+// Samples are processed in fixed chunks: consecutive samples lie on one face or edge, or on neighbouring ones, so
+// the previous answer is a good starting bound for the next query (AabbTree's hint). Chunk sums are added in chunk
+// order, which makes the result independent of the scheduling.
+constexpr size_t kChunk = 1024;
 
-}  // namespace
+struct ChunkSum {
+  double sum = 0;
+  double sum2 = 0;
+  double max = 0;
+};
 
-std::vector<Vec3> sample_surface(const Mesh& m, const MetroOptions& o) {
-  std::vector<Vec3> pts;
-  std::mt19937_64 rng(o.seed);
-  std::uniform_real_distribution<double> uni(0.0, 1.0);
-  if (o.sample_vertices) {
-    std::vector<uint8_t> used(m.positions.size(), 0);
-    for (const Tri& t : m.triangles)
-      for (uint32_t v : t) used[v] = 1;
-    for (size_t v = 0; v < m.positions.size(); ++v)
-      if (used[v]) pts.push_back(m.positions[v]);
-  }
-  if (o.sample_edges && o.samples > 0) {
-    // Each edge once; samples evenly spaced along it, as many as its share of the total length (with carry).
-    std::vector<std::pair<uint32_t, uint32_t>> edges;
-    edges.reserve(3 * m.triangles.size());
-    for (const Tri& t : m.triangles)
-      for (size_t k = 0; k < 3; ++k) {
-        const uint32_t a = t[k], b = t[(k + 1) % 3];
-        edges.push_back({std::min(a, b), std::max(a, b)});
-      }
-    std::sort(edges.begin(), edges.end());
-    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
-    double total = 0;
-    for (const auto& e : edges) total += norm(m.positions[e.second] - m.positions[e.first]);
-    if (total > 0) {
-      const double step = total / static_cast<double>(o.samples);
-      double carry = 0;
-      for (const auto& e : edges) {
-        const Vec3& a = m.positions[e.first];
-        const Vec3& b = m.positions[e.second];
-        const double want = norm(b - a) / step + carry;
-        const size_t n = static_cast<size_t>(want);
-        carry = want - static_cast<double>(n);
-        for (size_t k = 0; k < n; ++k) pts.push_back(lerp(a, b, (static_cast<double>(k) + 0.5) / static_cast<double>(n)));
-      }
-    }
-  }
-  if (o.sample_faces && o.samples > 0 && !m.triangles.empty()) {
-    std::vector<double> cdf(m.triangles.size());
-    double acc = 0;
-    for (size_t f = 0; f < m.triangles.size(); ++f) {
-      const Tri& t = m.triangles[f];
-      acc += triangle_area(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]);
-      cdf[f] = acc;
-    }
-    if (acc > 0)
-      for (size_t s = 0; s < o.samples; ++s) {
-        const double r = uni(rng) * acc;
-        const size_t f = std::min<size_t>(static_cast<size_t>(std::upper_bound(cdf.begin(), cdf.end(), r) - cdf.begin()),
-                                          cdf.size() - 1);
-        double u = uni(rng), v = uni(rng);
-        if (u + v > 1) {
-          u = 1 - u;
-          v = 1 - v;
-        }
-        const Tri& t = m.triangles[f];
-        const Vec3& a = m.positions[t[0]];
-        pts.push_back(a + (m.positions[t[1]] - a) * u + (m.positions[t[2]] - a) * v);
-      }
-  }
-  return pts;
-}
-
-OneSidedDistance distance_to_surface(const std::vector<Vec3>& points, const AabbTree& surface) {
-  struct Acc {
-    double sum = 0, sum2 = 0, max = 0;
-  };
+OneSidedDistance one_sided(const std::vector<Vec3>& points, const AabbTree& surface, std::vector<double>* per_sample,
+                           Progress* progress) {
   OneSidedDistance out;
-  out.samples = points.size();
-  if (points.empty() || surface.empty()) return out;
-  const Acc total = tbb::parallel_reduce(
-      tbb::blocked_range<size_t>(0, points.size(), 1024), Acc{},
-      [&](const tbb::blocked_range<size_t>& r, Acc acc) {
-        for (size_t i = r.begin(); i != r.end(); ++i) {
-          const double d = std::sqrt(surface.closest(points[i]).distance2);
-          acc.sum += d;
-          acc.sum2 += d * d;
-          acc.max = std::max(acc.max, d);
-        }
-        return acc;
-      },
-      [](Acc a, const Acc& b) {
-        a.sum += b.sum;
-        a.sum2 += b.sum2;
-        a.max = std::max(a.max, b.max);
-        return a;
-      });
-  const double n = static_cast<double>(points.size());
-  out.mean = total.sum / n;
-  out.rms = std::sqrt(total.sum2 / n);
+  const size_t n = points.size();
+  out.samples = n;
+  if (n == 0 || surface.empty()) return out;
+  if (per_sample) per_sample->resize(n);
+
+  const size_t chunks = (n + kChunk - 1) / kChunk;
+  std::vector<ChunkSum> sums(chunks);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, chunks, 1), [&](const tbb::blocked_range<size_t>& r) {
+    for (size_t c = r.begin(); c != r.end(); ++c) {
+      ChunkSum s;
+      AabbTree::Hit hint;
+      const size_t end = std::min(n, (c + 1) * kChunk);
+      for (size_t i = c * kChunk; i < end; ++i) {
+        surface.closest(points[i], hint);
+        const double d = std::sqrt(hint.distance2);
+        s.sum += d;
+        s.sum2 += d * d;
+        s.max = std::max(s.max, d);
+        if (per_sample) (*per_sample)[i] = d;
+      }
+      sums[c] = s;
+      if (progress) progress->advance(end - c * kChunk);
+    }
+  });
+  ChunkSum total;
+  for (const ChunkSum& s : sums) {
+    total.sum += s.sum;
+    total.sum2 += s.sum2;
+    total.max = std::max(total.max, s.max);
+  }
+  out.mean = total.sum / static_cast<double>(n);
+  out.rms = std::sqrt(total.sum2 / static_cast<double>(n));
   out.max = total.max;
   return out;
 }
 
-namespace {
+OneSidedDistance one_sided(const SurfaceSamples& samples, const AabbTree& surface, std::vector<double>* per_sample,
+                           Progress* progress) {
+  OneSidedDistance out = one_sided(samples.points, surface, per_sample, progress);
+  out.vertex_samples = samples.vertex_samples;
+  out.edge_samples = samples.edge_samples;
+  out.face_samples = samples.face_samples;
+  out.area = samples.area;
+  return out;
+}
+
+void require_surface(const Mesh& m, const char* which) {
+  if (m.triangles.empty())
+    throw InputError(std::string("mesh ") + which + " has no triangles: there is no surface to measure");
+}
+
+SamplingOptions sampling_options(const MetroOptions& o, size_t count) {
+  SamplingOptions s;
+  s.samples = count;
+  s.budget = o.budget;
+  s.vertices = o.sample_vertices;
+  s.edges = o.sample_edges;
+  s.faces = o.sample_faces;
+  s.seed = o.seed;
+  return s;
+}
+
+size_t sample_count(const MetroOptions& o, const Mesh& a, const Mesh& b) {
+  return o.samples ? o.samples : 10 * std::max(a.triangles.size(), b.triangles.size());
+}
+
 DistanceReport combine(const OneSidedDistance& ab, const OneSidedDistance& ba, double diagonal) {
   DistanceReport r;
   r.a_to_b = ab;
@@ -130,26 +104,74 @@ DistanceReport combine(const OneSidedDistance& ab, const OneSidedDistance& ba, d
   r.diagonal = diagonal;
   return r;
 }
+
 }  // namespace
 
-DistanceReport metro_distance(const Mesh& a, const Mesh& b, const MetroOptions& o) {
-  const AabbTree ta(a), tb(b);
-  const OneSidedDistance ab = distance_to_surface(sample_surface(a, o), tb);
-  MetroOptions ob = o;
-  ob.seed = o.seed + 1;
-  const OneSidedDistance ba = distance_to_surface(sample_surface(b, ob), ta);
-  return combine(ab, ba, diagonal_of(a));
+double bbox_diagonal(const Mesh& mesh) {
+  if (mesh.positions.empty()) return 0;
+  Vec3 lo = mesh.positions[0], hi = lo;
+  for (const Vec3& p : mesh.positions)
+    for (int k = 0; k < 3; ++k) {
+      lo[k] = std::min(lo[k], p[k]);
+      hi[k] = std::max(hi[k], p[k]);
+    }
+  return norm(hi - lo);
 }
 
-MetroReference::MetroReference(const Mesh& reference, const MetroOptions& options)
-    : options_(options), tree_(reference), samples_(sample_surface(reference, options)), diagonal_(diagonal_of(reference)) {}
+OneSidedDistance distance_to_surface(const SurfaceSamples& samples, const AabbTree& surface,
+                                     std::vector<double>* per_sample) {
+  return one_sided(samples, surface, per_sample, nullptr);
+}
+
+OneSidedDistance distance_to_surface(const std::vector<Vec3>& points, const AabbTree& surface,
+                                     std::vector<double>* per_sample) {
+  return one_sided(points, surface, per_sample, nullptr);
+}
+
+DistanceReport metro_distance(const Mesh& a, const Mesh& b, const MetroOptions& options) {
+  require_surface(a, "A");
+  require_surface(b, "B");
+  const SamplingOptions so = sampling_options(options, sample_count(options, a, b));
+  // Each preparation is parallel inside; running them one after the other keeps all cores busy without nesting.
+  const AabbTree tree_a(a), tree_b(b);
+  const SurfaceSamples samples_a = sample_surface(a, so), samples_b = sample_surface(b, so);
+  std::unique_ptr<Progress> progress;
+  if (options.progress)
+    progress = std::make_unique<Progress>("compare", samples_a.points.size() + samples_b.points.size());
+  const OneSidedDistance ab = one_sided(samples_a, tree_b, nullptr, progress.get());
+  const OneSidedDistance ba = one_sided(samples_b, tree_a, nullptr, progress.get());
+  if (progress) progress->finish();
+  return combine(ab, ba, bbox_diagonal(a));
+}
+
+MetroReference::MetroReference(Mesh reference, const MetroOptions& options)
+    : mesh_(std::move(reference)), options_(options) {
+  require_surface(mesh_, "A");
+  tree_ = AabbTree(mesh_);
+  diagonal_ = bbox_diagonal(mesh_);
+}
+
+std::shared_ptr<const SurfaceSamples> MetroReference::samples_for(size_t count) const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (!samples_ || samples_count_ != count) {
+    samples_ = std::make_shared<const SurfaceSamples>(sample_surface(mesh_, sampling_options(options_, count)));
+    samples_count_ = count;
+  }
+  return samples_;
+}
 
 DistanceReport MetroReference::compare(const Mesh& candidate) const {
-  const AabbTree tc(candidate);
-  const OneSidedDistance ab = distance_to_surface(samples_, tc);
-  MetroOptions ob = options_;
-  ob.seed = options_.seed + 1;
-  const OneSidedDistance ba = distance_to_surface(sample_surface(candidate, ob), tree_);
+  require_surface(candidate, "B");
+  const size_t count = sample_count(options_, mesh_, candidate);
+  const std::shared_ptr<const SurfaceSamples> samples_a = samples_for(count);
+  const AabbTree tree_b(candidate);
+  const SurfaceSamples samples_b = sample_surface(candidate, sampling_options(options_, count));
+  std::unique_ptr<Progress> progress;
+  if (options_.progress)
+    progress = std::make_unique<Progress>("compare", samples_a->points.size() + samples_b.points.size());
+  const OneSidedDistance ab = one_sided(*samples_a, tree_b, nullptr, progress.get());
+  const OneSidedDistance ba = one_sided(samples_b, tree_, nullptr, progress.get());
+  if (progress) progress->finish();
   return combine(ab, ba, diagonal_);
 }
 

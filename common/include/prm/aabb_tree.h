@@ -1,47 +1,79 @@
-// A bounding-volume hierarchy over the triangles of a mesh, for closest-point queries (Metro-style distances,
-// reference normals). Built in O(n log n) by median splits; queries are exact point-triangle distances.
+// A bounding-volume hierarchy (axis-aligned boxes) over the triangles of a mesh, for closest-point queries.
+//
+// Build: binned surface-area heuristic on the triangle centroids, O(n log n), the upper levels in parallel (oneTBB).
+// Query: depth-first, nearer child first, pruned by the best squared distance so far; leaves hold at most a few
+// triangles whose closest points are computed exactly in double precision (prm/point_triangle_distance.h).
+// The tree copies the geometry it needs: the mesh may change or die after the build. Queries are const and may run
+// concurrently from any number of threads.
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "prm/mesh.h"
+#include "prm/point_triangle_distance.h"
 
 namespace prm {
 
 class AabbTree {
  public:
-  AabbTree() = default;
-  explicit AabbTree(const Mesh& mesh);
+  static constexpr uint32_t kNoFace = std::numeric_limits<uint32_t>::max();
 
+  // The answer to a closest-point query: its squared distance to the query point, a point of the surface, and the
+  // index (into the mesh's triangles) of a triangle it lies on.
   struct Hit {
-    double distance2 = 0;  // squared distance
-    Vec3 point{0, 0, 0};   // closest point on the surface
-    uint32_t face = UINT32_MAX;
+    double distance2 = std::numeric_limits<double>::infinity();
+    Vec3 point{};
+    uint32_t face = kNoFace;
+    bool found() const { return face != kNoFace; }
   };
-  // Closest point of the surface to p. The tree must not be empty.
+
+  AabbTree() = default;
+  // Throws prm::InputError if a triangle refers to a missing vertex or a used vertex is not finite.
+  explicit AabbTree(const Mesh& mesh);
+  AabbTree(const std::vector<Vec3>& positions, const std::vector<Tri>& triangles);
+
+  // The closest point of the surface to p. On an empty tree, returns a Hit with found() false.
   Hit closest(const Vec3& p) const;
-  // Same, with an upper bound on the squared distance known in advance (a hint: faster when tight).
+  // Only looks for points closer than sqrt(bound2) (a known upper bound makes the search faster); returns a Hit with
+  // found() false if there is none.
   Hit closest(const Vec3& p, double bound2) const;
-  bool empty() const { return tris_.empty(); }
+  // Starts from `hint`, a surface point already known (e.g. the answer for a nearby query point): its distance to p
+  // bounds the search from the start, which makes coherent query sequences much faster. `hint` is updated in place;
+  // if no surface point is closer than hint.point, hint.point and hint.face stay as they are and only
+  // hint.distance2 is updated. A hint with found() false starts an unbounded search.
+  void closest(const Vec3& p, Hit& hint) const;
+
+  size_t num_triangles() const { return triangles_.size(); }
+  bool empty() const { return triangles_.empty(); }
+  // Box of all triangles: {min corner, max corner}; both zero for an empty tree.
+  std::array<Vec3, 2> bounds() const;
+  // Number of nodes and depth, for tests and tuning.
+  size_t num_nodes() const { return nodes_.size(); }
+  int depth() const;
 
  private:
+  // 32 bytes; the two children of an inner node are adjacent (left at `first`, right at `first + 1`) and sit in
+  // one 64-byte line. Boxes are floats rounded outwards, so they always contain the double-precision triangles.
   struct Node {
-    Vec3 lo, hi;
-    uint32_t first;  // leaf: first triangle in order_; inner: right child (left child is this + 1)
-    uint32_t count;  // leaf: triangle count; inner: 0
+    float lo[3];
+    float hi[3];
+    uint32_t first;  // leaf: first triangle in triangles_; inner: left child
+    uint32_t count;  // leaf: number of triangles (> 0); inner: 0
   };
   struct Triangle {
     Vec3 a, b, c;
   };
-  uint32_t build(const Mesh& mesh, uint32_t begin, uint32_t end, std::vector<uint32_t>& order,
-                 const std::vector<Vec3>& centroid);
-  std::vector<Node> nodes_;
-  std::vector<Triangle> tris_;   // in leaf order
-  std::vector<uint32_t> face_;   // original face of tris_[i]
-};
 
-// Closest point on triangle (a, b, c) to p (Ericson, Real-Time Collision Detection §5.1.5).
-Vec3 closest_point_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c);
+  void build(const std::vector<Vec3>& positions, const std::vector<Tri>& triangles);
+  // Depth-first search for a point closer than sqrt(best2); updates hit when it finds one.
+  void search(const Vec3& p, Hit& hit, double best2) const;
+
+  std::vector<Node> nodes_;
+  std::vector<Triangle> triangles_;  // in leaf order
+  std::vector<uint32_t> ids_;        // triangles_[k] is the mesh's triangle ids_[k]
+};
 
 }  // namespace prm

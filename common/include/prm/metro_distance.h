@@ -1,58 +1,101 @@
-// Surface-to-surface distance as the Metro tool measures it (Cignoni, Rocchini, Scopigno 1998) and MeshLab's
-// "Hausdorff Distance" filter computes it: one surface is sampled — every vertex, `samples` points spread uniformly
-// along the edges and `samples` area-weighted random points on the faces — and each sample's distance to the other
-// surface is measured exactly through an AABB tree. The one-sided mean, RMS and maximum are over all samples; the
-// symmetric values are the larger of the two directions.
+// Surface-to-surface distance between two triangle meshes as the Metro tool measures it (Cignoni, Rocchini,
+// Scopigno: "Metro: measuring error on simplified surfaces", 1998): the error measure of the paper's Table 1
+// (paper §4, "the mean square error output by the Metro tool", as a fraction of the bounding-box diagonal).
+//
+// Each surface is sampled (prm/surface_sampler.h: every vertex, points along the edges, points inside the faces) and
+// every sample's distance to the other surface is found exactly through an AABB tree (prm/aabb_tree.h). For each
+// direction A→B and B→A this gives the mean, the RMS and the maximum of the sample distances, every sample weighing
+// the same, as in Metro and in MeshLab's "Hausdorff Distance" filter. The symmetric figures are the larger of the two
+// directions; the symmetric maximum is the (sampled) Hausdorff distance.
+//
+// Sampling and queries run in parallel (oneTBB). Results depend only on the meshes and the options (seed included),
+// not on the number of threads; swapping A and B swaps the one-sided figures exactly.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <vector>
 
 #include "prm/aabb_tree.h"
 #include "prm/mesh.h"
+#include "prm/surface_sampler.h"
 
 namespace prm {
 
 struct MetroOptions {
-  size_t samples = 100000;  // edge samples and face samples per direction (each), as MeshLab's SampleNum
-  uint64_t seed = 1;
-  bool sample_vertices = true, sample_edges = true, sample_faces = true;
+  // Samples per surface, split between vertices, edges and faces as `budget` says. 0: ten per face of the mesh with
+  // more faces (Metro's default). The distances' cost is linear in this number.
+  size_t samples = 0;
+  SampleBudget budget = SampleBudget::Metro;
+  uint64_t seed = 1;  // random positions of the face samples (both surfaces use the same seed)
+  bool sample_vertices = true;
+  bool sample_edges = true;
+  bool sample_faces = true;
+  bool progress = false;  // show a prm::Progress line on stderr (terminals only)
 };
 
+// Distances from the samples of one surface to the other surface.
 struct OneSidedDistance {
-  double mean = 0, rms = 0, max = 0;
-  size_t samples = 0;
+  double mean = 0;
+  double rms = 0;
+  double max = 0;
+  size_t samples = 0;  // vertex_samples + edge_samples + face_samples
+  size_t vertex_samples = 0;
+  size_t edge_samples = 0;
+  size_t face_samples = 0;
+  double area = 0;  // area of the sampled surface
 };
 
 struct DistanceReport {
-  OneSidedDistance a_to_b, b_to_a;
-  double mean = 0, rms = 0, max = 0;  // symmetric: the larger of the two directions
-  double diagonal = 0;                // of A's bounding box: the unit of the relative figures
-  double rel(double d) const { return diagonal > 0 ? d / diagonal : 0; }
+  OneSidedDistance a_to_b;  // samples of A, distances to B
+  OneSidedDistance b_to_a;  // samples of B, distances to A
+  double mean = 0;          // max(a_to_b.mean, b_to_a.mean)
+  double rms = 0;           // max(a_to_b.rms, b_to_a.rms)
+  double max = 0;           // max(a_to_b.max, b_to_a.max): the Hausdorff distance
+  double diagonal = 0;      // length of the diagonal of A's bounding box: the unit of the relative figures
+  // A distance as a fraction of A's bounding-box diagonal (0 if the diagonal is 0).
+  double rel(double distance) const { return diagonal > 0 ? distance / diagonal : 0; }
 };
 
-// Points on the surface of `mesh` as Metro samples it.
-std::vector<Vec3> sample_surface(const Mesh& mesh, const MetroOptions& options);
-
-// Distances from points to a surface.
-OneSidedDistance distance_to_surface(const std::vector<Vec3>& points, const AabbTree& surface);
-
+// Metro distance between A and B. Throws prm::InputError if either mesh has no triangle, a triangle refers to a
+// missing vertex, or a used vertex has a non-finite coordinate.
 DistanceReport metro_distance(const Mesh& a, const Mesh& b, const MetroOptions& options = {});
 
-// A reference surface prepared once (its tree and its samples) and compared with many candidates: the remesher's
-// grid-size search compares every candidate with the same input.
+// Distances from sample points to the surface in `surface` (the building block of metro_distance). Statistics are
+// summed in a fixed order, so they do not depend on the thread count. If per_sample is given, it receives each
+// point's distance. The counts and area of the result are copied from `samples`.
+OneSidedDistance distance_to_surface(const SurfaceSamples& samples, const AabbTree& surface,
+                                     std::vector<double>* per_sample = nullptr);
+OneSidedDistance distance_to_surface(const std::vector<Vec3>& points, const AabbTree& surface,
+                                     std::vector<double>* per_sample = nullptr);
+
+// Length of the diagonal of the bounding box of the mesh's vertices (0 for an empty mesh).
+double bbox_diagonal(const Mesh& mesh);
+
+// Many candidates against one fixed mesh (the remesher's grid-size search): the reference's tree is built once, and
+// its samples are kept for the next call that needs as many. The reference plays A: relative figures are fractions
+// of its diagonal. compare() may be called from several threads at once.
 class MetroReference {
  public:
-  MetroReference(const Mesh& reference, const MetroOptions& options = {});
-  DistanceReport compare(const Mesh& candidate) const;  // a = reference, b = candidate
+  explicit MetroReference(Mesh reference, const MetroOptions& options = {});
+  DistanceReport compare(const Mesh& candidate) const;  // A = reference, B = candidate
   double diagonal() const { return diagonal_; }
+  const Mesh& mesh() const { return mesh_; }
+  const AabbTree& tree() const { return tree_; }
+  const MetroOptions& options() const { return options_; }
 
  private:
+  std::shared_ptr<const SurfaceSamples> samples_for(size_t count) const;
+
+  Mesh mesh_;
   MetroOptions options_;
   AabbTree tree_;
-  std::vector<Vec3> samples_;
   double diagonal_ = 0;
+  mutable std::mutex mutex_;
+  mutable std::shared_ptr<const SurfaceSamples> samples_;
+  mutable size_t samples_count_ = 0;
 };
 
 }  // namespace prm
