@@ -207,7 +207,8 @@ void AabbTree::build(const std::vector<Vec3>& positions, const std::vector<Tri>&
       BuildTriangle& b = tris[t];
       for (int k = 0; k < 3; ++k) b.box.add(positions[f[k]]);
       b.centroid = (positions[f[0]] + positions[f[1]] + positions[f[2]]) * (1.0 / 3.0);
-      if (!std::isfinite(b.box.lo[0] + b.box.lo[1] + b.box.lo[2] + b.box.hi[0] + b.box.hi[1] + b.box.hi[2])) {
+      // (min/max skip NaN, so the box alone would not show it; the centroid's sum does.)
+      if (!std::isfinite(b.centroid[0] + b.centroid[1] + b.centroid[2])) {
         size_t cur = bad_value.load();
         while (t < cur && !bad_value.compare_exchange_weak(cur, t)) {
         }

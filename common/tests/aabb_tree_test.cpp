@@ -1,0 +1,130 @@
+// The closest-point primitives and the AABB tree against brute force.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "metro_test_meshes.h"
+#include "prm/aabb_tree.h"
+#include "prm/error.h"
+#include "prm/point_triangle_distance.h"
+
+namespace prm {
+namespace {
+
+TEST(PointTriangleDistance, EveryVoronoiRegion) {
+  const Vec3 a{0, 0, 0}, b{1, 0, 0}, c{0, 1, 0};
+  // interior: straight above the plane
+  EXPECT_DOUBLE_EQ(point_triangle_distance2({0.25, 0.25, 2}, a, b, c), 4.0);
+  // vertex regions
+  EXPECT_DOUBLE_EQ(point_triangle_distance2({-1, -1, 0}, a, b, c), 2.0);
+  EXPECT_DOUBLE_EQ(point_triangle_distance2({2, -1, 0}, a, b, c), 2.0);
+  EXPECT_DOUBLE_EQ(point_triangle_distance2({-1, 3, 0}, a, b, c), 1.0 + 4.0);
+  // edge regions ab, ca, bc
+  EXPECT_DOUBLE_EQ(point_triangle_distance2({0.5, -2, 1}, a, b, c), 4.0 + 1.0);
+  EXPECT_DOUBLE_EQ(point_triangle_distance2({-3, 0.5, 0}, a, b, c), 9.0);
+  EXPECT_NEAR(point_triangle_distance2({1, 1, 0}, a, b, c), 0.5, 1e-15);
+  const Vec3 q = closest_point_on_triangle({1, 1, 0}, a, b, c);
+  EXPECT_NEAR(q[0], 0.5, 1e-15);
+  EXPECT_NEAR(q[1], 0.5, 1e-15);
+}
+
+TEST(PointTriangleDistance, DegenerateTriangles) {
+  // Collinear corners: the triangle is the segment [0, 2] on the x axis.
+  const Vec3 a{0, 0, 0}, b{1, 0, 0}, c{2, 0, 0};
+  EXPECT_DOUBLE_EQ(point_triangle_distance2({1.5, 1, 0}, a, b, c), 1.0);
+  EXPECT_DOUBLE_EQ(point_triangle_distance2({3, 0, 0}, a, b, c), 1.0);
+  EXPECT_DOUBLE_EQ(point_triangle_distance2({-1, 0, 1}, a, b, c), 2.0);
+  // Repeated corners, and a single point.
+  EXPECT_DOUBLE_EQ(point_triangle_distance2({0.5, 2, 0}, a, a, b), 4.0);
+  EXPECT_DOUBLE_EQ(point_triangle_distance2({0, 0, 3}, b, b, b), 1.0 + 9.0);
+  const Vec3 q = closest_point_on_triangle({7, 8, 9}, a, a, a);
+  EXPECT_TRUE(std::isfinite(q[0]) && std::isfinite(q[1]) && std::isfinite(q[2]));
+}
+
+double brute_force2(const Mesh& m, const Vec3& p) {
+  double best = HUGE_VAL;
+  for (const Tri& t : m.triangles)
+    best = std::min(best, point_triangle_distance2(p, m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]));
+  return best;
+}
+
+TEST(AabbTree, MatchesBruteForceOnATriangleSoup) {
+  const Mesh soup = test::random_soup(3000, 7);
+  const AabbTree tree(soup);
+  EXPECT_EQ(tree.num_triangles(), 3000u);
+  EXPECT_LT(tree.depth(), 40);
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-0.5, 1.5);
+  AabbTree::Hit hint;
+  for (int i = 0; i < 2000; ++i) {
+    const Vec3 p{u(rng), u(rng), u(rng)};
+    const AabbTree::Hit hit = tree.closest(p);
+    ASSERT_TRUE(hit.found());
+    const double expected = brute_force2(soup, p);
+    ASSERT_EQ(hit.distance2, expected) << "query " << i;
+    // The reported point is on the reported triangle, at the reported distance.
+    const Tri& t = soup.triangles[hit.face];
+    EXPECT_NEAR(point_triangle_distance2(hit.point, soup.positions[t[0]], soup.positions[t[1]], soup.positions[t[2]]),
+                0.0, 1e-24);
+    EXPECT_NEAR(norm2(hit.point - p), hit.distance2, 1e-15);
+    // The hinted search from the previous answer finds the same distance.
+    tree.closest(p, hint);
+    ASSERT_EQ(hint.distance2, expected);
+  }
+}
+
+TEST(AabbTree, SphereQueries) {
+  const Mesh sphere = test::icosphere(4, 2.0);
+  const AabbTree tree(sphere);
+  std::mt19937_64 rng(3);
+  std::normal_distribution<double> g;
+  for (int i = 0; i < 300; ++i) {
+    const Vec3 dir = normalized(Vec3{g(rng), g(rng), g(rng)});
+    for (double r : {0.0, 0.5, 1.99, 2.0, 3.0, 100.0}) {
+      const Vec3 p = dir * r;
+      ASSERT_EQ(tree.closest(p).distance2, brute_force2(sphere, p));
+    }
+  }
+}
+
+TEST(AabbTree, BoundedQuery) {
+  const Mesh patch = test::grid_patch(10, 10, 1.0, 1.0);
+  const AabbTree tree(patch);
+  EXPECT_FALSE(tree.closest({0.5, 0.5, 2.0}, 1.0).found());  // nearest is at distance 2 > 1
+  const AabbTree::Hit hit = tree.closest({0.5, 0.5, 2.0}, 9.0);
+  ASSERT_TRUE(hit.found());
+  EXPECT_DOUBLE_EQ(hit.distance2, 4.0);
+}
+
+TEST(AabbTree, IdenticalTrianglesKeepTheTreeShallow) {
+  Mesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  m.triangles.assign(5000, Tri{0, 1, 2});
+  const AabbTree tree(m);
+  EXPECT_LE(tree.depth(), 20);
+  EXPECT_DOUBLE_EQ(tree.closest({0.2, 0.2, 1.0}).distance2, 1.0);
+}
+
+TEST(AabbTree, EmptyAndInvalid) {
+  const AabbTree empty{Mesh{}};
+  EXPECT_TRUE(empty.empty());
+  EXPECT_FALSE(empty.closest({1, 2, 3}).found());
+
+  Mesh bad;
+  bad.positions = {{0, 0, 0}, {1, 0, 0}};
+  bad.triangles = {{0, 1, 2}};
+  EXPECT_THROW(AabbTree{bad}, InputError);
+  bad.positions.push_back({0, NAN, 0});
+  EXPECT_THROW(AabbTree{bad}, InputError);
+}
+
+TEST(AabbTree, Bounds) {
+  const AabbTree tree(test::grid_patch(3, 4, 2.0, 5.0, 1.5));
+  const auto b = tree.bounds();
+  EXPECT_EQ(b[0], (Vec3{0, 0, 1.5}));
+  EXPECT_EQ(b[1], (Vec3{2, 5, 1.5}));
+}
+
+}  // namespace
+}  // namespace prm
