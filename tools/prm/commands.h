@@ -18,6 +18,8 @@ class Failure : public std::runtime_error {
 void add_info_command(CLI::App& root);
 void add_compare_command(CLI::App& root);
 void add_repair_command(CLI::App& root);
+void add_reliefs_command(CLI::App& root);
+void add_remesh_command(CLI::App& root);
 void add_encode_command(CLI::App& root);
 void add_decode_command(CLI::App& root);
 

@@ -21,6 +21,8 @@ int main(int argc, char** argv) {
   add_info_command(app);
   add_compare_command(app);
   add_repair_command(app);
+  add_reliefs_command(app);
+  add_remesh_command(app);
   add_encode_command(app);
   add_decode_command(app);
 

@@ -1,0 +1,62 @@
+// The whole remesher: reliefs (paper §2.1), resampling and merging (§2.2-2.4), and the search for the grid size
+// that meets a target error (the paper chose g by hand for each model).
+#pragma once
+
+#include <functional>
+#include <stdexcept>
+#include <vector>
+
+#include "prm/mesh.h"
+#include "prm/remesh/reliefs.h"
+#include "prm/remesh/resample.h"
+
+namespace prm::remesh {
+
+struct RemeshOptions {
+  int bits = 12;                 // quantization of the codec that will store the result (sets the lattice units)
+  ReliefOptions reliefs;         // tau, geodesics
+  // The grid size: exactly one of these, or target_error.
+  double grid_size = 0;          // model units
+  double grid_fraction = 0;      // fraction of the bounding-box diagonal
+  double target_error = 0;       // largest symmetric RMS distance, as a fraction of the diagonal: search g
+  int max_search_steps = 8;
+  double max_normal_angle_deg = 90;
+  bool parallel = true;
+};
+
+// Symmetric RMS and maximum distance between the input and a candidate, as fractions of the input's diagonal.
+struct ErrorEstimate {
+  double rms = 0;
+  double max = 0;
+};
+using ErrorFunction = std::function<ErrorEstimate(const Mesh& candidate)>;
+
+struct SearchStep {
+  int64_t grid = 0;   // quantization steps
+  double grid_size = 0;
+  size_t vertices = 0;
+  double regular_share = 0;
+  ErrorEstimate error;
+  double seconds = 0;
+};
+
+struct RemeshResult {
+  PrmMesh prm;
+  ErrorEstimate error;              // of the returned mesh (measured when an error function was given)
+  bool error_measured = false;
+  std::vector<SearchStep> search;   // every grid size tried, in order
+  size_t reliefs = 0;
+  double relief_boundary_length = 0;
+  double seconds_reliefs = 0, seconds_total = 0;
+};
+
+// No grid size within the search's steps met the target error.
+class TargetNotReached : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// input: a closed 2-manifold (close holes first: prm::repair). `error` may be empty unless target_error is set.
+RemeshResult remesh(const Mesh& input, const RemeshOptions& options, const ErrorFunction& error = {});
+
+}  // namespace prm::remesh

@@ -1,0 +1,148 @@
+// The remesher end to end, and the grid-size search.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <stdexcept>
+
+#include "prm/error.h"
+#include "prm/progress.h"
+#include "prm/remesh/remesh.h"
+#include "prm/vec3.h"
+
+namespace prm::remesh {
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
+
+double bbox_diagonal(const Mesh& m) {
+  if (m.positions.empty()) return 0;
+  Vec3 lo = m.positions[0], hi = m.positions[0];
+  for (const Vec3& p : m.positions)
+    for (size_t a = 0; a < 3; ++a) {
+      lo[a] = std::min(lo[a], p[a]);
+      hi[a] = std::max(hi[a], p[a]);
+    }
+  return norm(hi - lo);
+}
+
+double mean_edge_length(const Mesh& m) {
+  double sum = 0;
+  size_t n = 0;
+  for (const Tri& t : m.triangles)
+    for (size_t k = 0; k < 3; ++k) {
+      sum += norm(m.positions[t[(k + 1) % 3]] - m.positions[t[k]]);
+      ++n;
+    }
+  return n ? sum / static_cast<double>(n) : 0;
+}
+
+}  // namespace
+
+RemeshResult remesh(const Mesh& input, const RemeshOptions& options, const ErrorFunction& error) {
+  const auto t0 = std::chrono::steady_clock::now();
+  const int given = (options.grid_size > 0) + (options.grid_fraction > 0) + (options.target_error > 0);
+  if (given != 1) throw std::invalid_argument("remesh: give exactly one of grid_size, grid_fraction, target_error");
+  if (options.target_error > 0 && !error) throw std::invalid_argument("remesh: target_error needs an error function");
+  if (input.triangles.empty()) throw InputError("the mesh has no faces");
+
+  RemeshResult result;
+  const ReliefLayout layout = build_reliefs(input, options.reliefs);
+  result.reliefs = layout.reliefs.size();
+  result.relief_boundary_length = layout.boundary_length;
+  result.seconds_reliefs = seconds_since(t0);
+  std::vector<int> axes(layout.reliefs.size());
+  for (size_t r = 0; r < axes.size(); ++r) axes[r] = layout.reliefs[r].axis;
+
+  LayoutInput in;
+  in.refined = &layout.mesh;
+  in.face_relief = &layout.face_relief;
+  in.relief_axis = &axes;
+  in.source_face = &layout.source_face;
+  in.input = &input;
+  ResampleOptions ro;
+  ro.frame = QuantFrame::of_mesh(input, options.bits);
+  ro.max_normal_angle_deg = options.max_normal_angle_deg;
+  ro.parallel = options.parallel;
+  const double diagonal = bbox_diagonal(input);
+  auto grid_of = [&](double size) {
+    return std::max<int64_t>(2, static_cast<int64_t>(std::llround(size / ro.frame.step)));
+  };
+
+  auto attempt = [&](int64_t grid) {
+    const auto ts = std::chrono::steady_clock::now();
+    ro.grid = grid;
+    PrmMesh prm = resample_and_merge(in, ro);
+    SearchStep step;
+    step.grid = grid;
+    step.grid_size = static_cast<double>(grid) * ro.frame.step;
+    step.vertices = prm.stats.vertices;
+    step.regular_share = prm.stats.faces ? static_cast<double>(prm.stats.regular_faces) / prm.stats.faces : 0;
+    if (error) step.error = error(prm.mesh);
+    step.seconds = seconds_since(ts);
+    result.search.push_back(step);
+    return prm;
+  };
+
+  if (options.target_error <= 0) {
+    const double size = options.grid_size > 0 ? options.grid_size : options.grid_fraction * diagonal;
+    result.prm = attempt(grid_of(size));
+    if (error) {
+      result.error = result.search.back().error;
+      result.error_measured = true;
+    }
+    result.seconds_total = seconds_since(t0);
+    return result;
+  }
+
+  // Search: the resampling error grows roughly like g^2 (linear interpolation of a smooth surface), so each step
+  // rescales g by (E / e)^(1/p), with the exponent p fitted from the last two steps (clamped to [1, 3]).
+  const double target = options.target_error;
+  int64_t grid = grid_of(1.5 * mean_edge_length(input));
+  int64_t best_grid = -1;
+  PrmMesh best;
+  double best_error = 0;
+  int64_t smallest_failing = INT64_MAX;
+  Progress progress("remesh: searching the grid size", static_cast<size_t>(options.max_search_steps));
+  for (int s = 0; s < options.max_search_steps; ++s) {
+    PrmMesh prm = attempt(grid);
+    progress.advance();
+    const SearchStep& step = result.search.back();
+    const double e = step.error.rms;
+    if (e <= target && grid > best_grid) {
+      best_grid = grid;
+      best = std::move(prm);
+      best_error = e;
+      result.error = step.error;
+    }
+    if (e > target) smallest_failing = std::min(smallest_failing, grid);
+    if (best_grid > 0 && smallest_failing - best_grid <= std::max<int64_t>(1, best_grid / 50)) break;
+    double p = 2.0;
+    if (result.search.size() >= 2) {
+      const SearchStep& a = result.search[result.search.size() - 2];
+      if (a.grid != step.grid && a.error.rms > 0 && step.error.rms > 0)
+        p = std::clamp(std::log(step.error.rms / a.error.rms) / std::log(static_cast<double>(step.grid) / a.grid), 1.0, 3.0);
+    }
+    // Aim slightly below the target so that the next step is likely to be feasible.
+    double next = static_cast<double>(grid) * std::pow(0.97 * target / std::max(e, 1e-12), 1.0 / p);
+    int64_t g = std::max<int64_t>(2, static_cast<int64_t>(std::floor(next)));
+    if (best_grid > 0) g = std::max(g, best_grid + 1);
+    if (smallest_failing != INT64_MAX) g = std::min(g, smallest_failing - 1);
+    if (best_grid > 0 && smallest_failing != INT64_MAX && (g <= best_grid || g >= smallest_failing))
+      g = (best_grid + smallest_failing) / 2;
+    if (g == grid || g < 2) break;
+    grid = g;
+  }
+  progress.finish();
+  if (best_grid < 0)
+    throw TargetNotReached("remesh: no grid size reached the target error " + std::to_string(target) +
+                             " in " + std::to_string(options.max_search_steps) + " steps");
+  result.prm = std::move(best);
+  result.error_measured = true;
+  (void)best_error;
+  result.seconds_total = seconds_since(t0);
+  return result;
+}
+
+}  // namespace prm::remesh

@@ -1,0 +1,115 @@
+// prm remesh IN -o OUT.ply (--grid G | --grid-fraction F | --target-error E) [--tau T] [--bits B] [--json]:
+// the piecewise regular mesh of paper §2, with its lattice labels (docs/ARCHITECTURE.md "The PRM file").
+#include <chrono>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+#include "commands.h"
+#include "prm/mesh_io.h"
+#include "prm/mesh_repair.h"
+#include "prm/mesh_validate.h"
+#include "prm/metro_distance.h"
+#include "prm/remesh/remesh.h"
+
+namespace prm::cli {
+
+void add_remesh_command(CLI::App& root) {
+  auto* cmd = root.add_subcommand("remesh", "Resample a mesh into a piecewise regular mesh (paper §2)");
+  struct Options {
+    std::string input, output;
+    double grid = 0, grid_fraction = 0, target = 0, tau = 0.2;
+    int bits = 12;
+    bool json = false, naive = false;
+    size_t samples = 100000;
+  };
+  auto opt = std::make_shared<Options>();
+  cmd->add_option("input", opt->input, "Mesh file (holes are closed first; must be a 2-manifold)")->required();
+  cmd->add_option("-o,--output", opt->output, "Output PRM file (binary PLY with lattice labels)")->required();
+  auto* g = cmd->add_option("--grid", opt->grid, "Grid size in model units")->check(CLI::PositiveNumber);
+  auto* gf = cmd->add_option("--grid-fraction", opt->grid_fraction, "Grid size as a fraction of the bounding-box diagonal")
+                 ->check(CLI::PositiveNumber);
+  auto* te = cmd->add_option("--target-error", opt->target,
+                             "Largest symmetric RMS distance to the input, as a fraction of its diagonal: the grid "
+                             "size is searched")
+                 ->check(CLI::PositiveNumber);
+  g->excludes(gf)->excludes(te);
+  gf->excludes(te);
+  cmd->add_option("--tau", opt->tau, "Relief smoothing parameter in (0, 0.577) (paper: 0.1-0.3)");
+  cmd->add_option("--bits", opt->bits, "Quantization bits of the codec that will store it (8..20)")->check(CLI::Range(8, 20));
+  cmd->add_option("--samples", opt->samples, "Metro samples per direction for the error (edges and faces each)");
+  cmd->add_flag("--naive-reliefs", opt->naive, "Reliefs by closest axis only (for comparison)");
+  cmd->add_flag("--json", opt->json, "Print the report as one JSON object");
+  cmd->callback([opt] {
+    if (opt->grid <= 0 && opt->grid_fraction <= 0 && opt->target <= 0)
+      throw CLI::ValidationError("remesh", "give one of --grid, --grid-fraction or --target-error");
+    const auto t0 = std::chrono::steady_clock::now();
+    Mesh input = read_mesh(opt->input);
+    RepairReport rep;
+    if (!validate_mesh(input).closed() || !validate_mesh(input).clean()) input = repair_mesh(input, &rep);
+    remesh::RemeshOptions ro;
+    ro.bits = opt->bits;
+    ro.reliefs.tau = opt->tau;
+    ro.reliefs.naive = opt->naive;
+    ro.grid_size = opt->grid;
+    ro.grid_fraction = opt->grid_fraction;
+    ro.target_error = opt->target;
+    MetroOptions mo;
+    mo.samples = opt->samples;
+    const MetroReference reference(input, mo);
+    auto error = [&](const Mesh& candidate) {
+      const DistanceReport d = reference.compare(candidate);
+      return remesh::ErrorEstimate{d.rel(d.rms), d.rel(d.max)};
+    };
+    remesh::RemeshResult res;
+    try {
+      res = remesh::remesh(input, ro, error);
+    } catch (const remesh::TargetNotReached& e) {
+      throw Failure(e.what());
+    }
+    write_mesh(res.prm.mesh, opt->output, WriteOptions{MeshFormat::Ply, true, true, true});
+    const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const auto& s = res.prm.stats;
+    const double regular = s.faces ? static_cast<double>(s.regular_faces) / s.faces : 0;
+    if (opt->json) {
+      nlohmann::json search = nlohmann::json::array();
+      for (const auto& st : res.search)
+        search.push_back({{"grid_steps", st.grid}, {"grid_size", st.grid_size}, {"vertices", st.vertices},
+                          {"regular_share", st.regular_share}, {"rms", st.error.rms}, {"max", st.error.max},
+                          {"seconds", st.seconds}});
+      nlohmann::json j = {
+          {"input", opt->input}, {"output", opt->output}, {"holes_closed", rep.holes_filled},
+          {"n_o", input.positions.size()}, {"n_r", s.vertices}, {"faces", s.faces},
+          {"grid_steps", res.prm.lattice.A}, {"grid_size", static_cast<double>(res.prm.lattice.A) * res.prm.frame.step},
+          {"grid_fraction", static_cast<double>(res.prm.lattice.A) * res.prm.frame.step / reference.diagonal()},
+          {"tau", opt->tau}, {"reliefs", res.reliefs}, {"relief_boundary_length", res.relief_boundary_length},
+          {"regular_faces", s.regular_faces}, {"regular_share", regular},
+          {"lattice_vertices", s.lattice_vertices},
+          {"rms_error", res.error.rms}, {"max_error", res.error.max},
+          {"unrepaired_triangles", s.unrepaired},
+          {"stats", {{"sliced_vertices", s.sliced_vertices}, {"collapses", s.collapses}, {"cell_flips", s.cell_flips},
+                     {"stuck", s.stuck}, {"fill_triangles", s.fill_triangles}, {"loops_broken", s.loops_broken},
+                     {"seam_collapses", s.seam_collapses}, {"area_flips", s.area_flips}, {"repairs", s.repairs}}},
+          {"search", search}, {"seconds", secs}};
+      std::printf("%s\n", j.dump().c_str());
+      return;
+    }
+    std::printf("%s -> %s\n", opt->input.c_str(), opt->output.c_str());
+    if (rep.holes_filled) std::printf("  closed %zu hole(s) first\n", rep.holes_filled);
+    std::printf("  n_o %zu -> n_r %zu vertices (%.2f), %zu faces, %.1f%% regular, %zu reliefs (tau %g)\n",
+                input.positions.size(), s.vertices, static_cast<double>(s.vertices) / input.positions.size(), s.faces,
+                100 * regular, res.reliefs, opt->tau);
+    std::printf("  grid %lld steps = %g (%.5f of the diagonal); RMS error %.3e, max %.3e of the diagonal\n",
+                static_cast<long long>(res.prm.lattice.A), static_cast<double>(res.prm.lattice.A) * res.prm.frame.step,
+                static_cast<double>(res.prm.lattice.A) * res.prm.frame.step / reference.diagonal(), res.error.rms,
+                res.error.max);
+    if (res.search.size() > 1) {
+      std::printf("  search:");
+      for (const auto& st : res.search) std::printf(" g=%lld:%.2e", static_cast<long long>(st.grid), st.error.rms);
+      std::printf("\n");
+    }
+    if (s.unrepaired) std::printf("  warning: %zu flipped or zero-area triangles could not be removed\n", s.unrepaired);
+    std::printf("  %.1f s\n", secs);
+  });
+}
+
+}  // namespace prm::cli
