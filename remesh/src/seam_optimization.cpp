@@ -47,17 +47,16 @@ class SeamOptimizer {
  private:
   const MergedVertex& mv(VH v) const { return m_.vertices[static_cast<size_t>(v.idx())]; }
   Vec3 pos(VH v) const { return mv(v).position; }
-  Vec3 ref_normal(VH a, VH b, VH c) const {
-    return normals_[static_cast<size_t>(mv(a).source_face)] + normals_[static_cast<size_t>(mv(b).source_face)] +
-           normals_[static_cast<size_t>(mv(c).source_face)];
-  }
-  // Not zero-area and not flipped against the input surface's normal near it.
+  // Not zero-area, and not flipped: within the allowed angle of the input's normal at one of its corners (where
+  // the input folds, as a centroid fan over a non-planar hole does, the corners' input normals disagree).
   bool triangle_ok(VH a, VH b, VH c, const Vec3& pa, const Vec3& pb, const Vec3& pc) const {
     const Vec3 n = cross(pb - pa, pc - pa);
     const double n2 = norm2(n);
     if (n2 <= min_norm_ * min_norm_) return false;
-    const Vec3 r = ref_normal(a, b, c);
-    return dot(n, r) > cos_max_ * std::sqrt(n2 * norm2(r));
+    const double limit = cos_max_ * std::sqrt(n2);
+    for (VH v : {a, b, c})
+      if (dot(n, normals_[static_cast<size_t>(mv(v).source_face)]) > limit) return true;
+    return false;
   }
   bool face_ok(FH f) const {
     auto it = mesh_.cfv_iter(f);
@@ -237,6 +236,7 @@ class SeamOptimizer {
       mesh_.collapse(best);
       return true;
     }
+    // A flip that leaves fewer bad triangles among the two it touches.
     for (auto h : mesh_.fh_range(f)) {
       const EH e = mesh_.edge_handle(h);
       if (mesh_.is_boundary(e) || !mesh_.is_flip_ok(e)) continue;
@@ -244,7 +244,12 @@ class SeamOptimizer {
       const VH a = mesh_.from_vertex_handle(h), b = mesh_.to_vertex_handle(h);
       const VH c = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h));
       const VH d = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(o));
-      if (triangle_ok(c, a, d, pos(c), pos(a), pos(d)) && triangle_ok(d, b, c, pos(d), pos(b), pos(c))) {
+      const int before = !triangle_ok(a, b, c, pos(a), pos(b), pos(c)) + !triangle_ok(b, a, d, pos(b), pos(a), pos(d));
+      const bool ok1 = triangle_ok(c, a, d, pos(c), pos(a), pos(d)), ok2 = triangle_ok(d, b, c, pos(d), pos(b), pos(c));
+      // Both new triangles keep some area, so that no zero-area triangle is made.
+      const bool area1 = norm(cross(pos(a) - pos(c), pos(d) - pos(c))) > min_norm_;
+      const bool area2 = norm(cross(pos(b) - pos(d), pos(c) - pos(d))) > min_norm_;
+      if (area1 && area2 && (!ok1 + !ok2) < before) {
         mesh_.flip(e);
         return true;
       }
@@ -254,9 +259,9 @@ class SeamOptimizer {
 
   // Moves a non-grid vertex of f towards the centroid of its neighbours until all its triangles are valid.
   // (Non-grid vertices may sit anywhere; the move is a fraction of a grid step, along the surface.)
-  bool relocate_vertex(FH f) {
+  bool relocate_vertex(FH f, bool allow_lattice) {
     for (auto v : mesh_.fv_range(f)) {
-      if (mv(v).lattice) continue;
+      if (mv(v).lattice && !allow_lattice) continue;
       Vec3 centroid{0, 0, 0};
       int n = 0;
       for (auto w : mesh_.vv_range(v)) {
@@ -279,6 +284,7 @@ class SeamOptimizer {
         }
         if (ok) {
           m_.vertices[static_cast<size_t>(v.idx())].position = p;
+          m_.vertices[static_cast<size_t>(v.idx())].lattice = false;  // a moved grid vertex is no longer one
           return true;
         }
       }
@@ -288,14 +294,22 @@ class SeamOptimizer {
 
   size_t remove_bad_triangles() {
     size_t repairs = 0;
-    for (int round = 0; round < 16; ++round) {
-      size_t fixed = 0;
+    // Rounds of local fixes; when a round fixes nothing, the next may also move grid vertices (which then stop
+    // being grid vertices). Stops when no bad triangle is left or a round with grid moves fixes nothing.
+    bool allow_lattice = false;
+    for (int round = 0; round < 32; ++round) {
+      size_t fixed = 0, bad = 0;
       for (auto f : mesh_.faces()) {
         if (mesh_.status(f).deleted() || face_ok(f)) continue;
-        if (repair_face(f) || relocate_vertex(f)) ++fixed;
+        ++bad;
+        if (repair_face(f) || relocate_vertex(f, allow_lattice)) ++fixed;
       }
       repairs += fixed;
-      if (fixed == 0) break;
+      if (bad == 0) break;
+      if (fixed == 0) {
+        if (allow_lattice) break;
+        allow_lattice = true;
+      }
     }
     return repairs;
   }
