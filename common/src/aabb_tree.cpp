@@ -22,8 +22,8 @@ constexpr uint32_t kParallelSize = 4096; // ranges larger than this build their 
 constexpr int kSahMaxDepth = 40;         // below this depth, split at the median: bounds the depth (and the query
                                          // stack) even for pathological inputs such as many identical triangles
 constexpr int kStackSize = 128;          // > kSahMaxDepth + log2(2^32)
-constexpr double kTraversalCost = 1.0;   // SAH costs relative to one point-triangle test
-constexpr double kTriangleCost = 1.0;
+constexpr double kTraversalCost = 1.0;   // SAH costs: a point-triangle test costs about two box tests
+constexpr double kTriangleCost = 2.0;
 
 struct Box {
   Vec3 lo{HUGE_VAL, HUGE_VAL, HUGE_VAL};
@@ -74,12 +74,9 @@ class AabbTreeBuilder {
 
   std::atomic<uint32_t> next{2};  // node 0 is the root, node 1 unused: children pairs start at even indices
 
-  void build(uint32_t node, uint32_t begin, uint32_t end, int depth) {
-    Box box, cbox;
-    for (uint32_t i = begin; i < end; ++i) {
-      box.add(tris_[ids_[i]].box);
-      cbox.add(tris_[ids_[i]].centroid);
-    }
+  // box: bounds of the range's triangles; cbox: bounds of their centroids (both computed by the caller, which has
+  // them from its own binning, so that each level makes only two passes over its range: binning and partition).
+  void build(uint32_t node, uint32_t begin, uint32_t end, int depth, const Box& box, const Box& cbox) {
     for (int k = 0; k < 3; ++k) {
       boxes_[6 * node + k] = round_down(box.lo[k]);
       boxes_[6 * node + 3 + k] = round_up(box.hi[k]);
@@ -93,6 +90,7 @@ class AabbTreeBuilder {
     const double extent = cbox.hi[axis] - cbox.lo[axis];
 
     uint32_t mid = begin + count / 2;
+    Box left_box, left_cbox, right_box, right_cbox;
     bool use_median = depth >= kSahMaxDepth || !(extent > 0);
     if (!use_median) {
       // Binned SAH along the widest centroid axis.
@@ -101,11 +99,13 @@ class AabbTreeBuilder {
         const int b = static_cast<int>((tris_[id].centroid[axis] - cbox.lo[axis]) * scale);
         return std::min(std::max(b, 0), kBins - 1);
       };
-      Box bins[kBins];
+      Box bins[kBins], cbins[kBins];
       uint32_t counts[kBins] = {};
       for (uint32_t i = begin; i < end; ++i) {
+        const BuildTriangle& t = tris_[ids_[i]];
         const int b = bin_of(ids_[i]);
-        bins[b].add(tris_[ids_[i]].box);
+        bins[b].add(t.box);
+        cbins[b].add(t.centroid);
         ++counts[b];
       }
       double right_area[kBins];
@@ -141,11 +141,13 @@ class AabbTreeBuilder {
       } else if (count <= kMaxLeafSize && leaf_cost <= split_cost) {
         return make_leaf(node, begin, count);
       } else {
-        uint32_t* first = ids_.data() + begin;
-        mid = static_cast<uint32_t>(
-            std::partition(first, ids_.data() + end, [&](uint32_t id) { return bin_of(id) < best_split; }) -
-            ids_.data());
-        if (mid == begin || mid == end) use_median = true;
+        mid = static_cast<uint32_t>(std::partition(ids_.data() + begin, ids_.data() + end,
+                                                   [&](uint32_t id) { return bin_of(id) < best_split; }) -
+                                    ids_.data());
+        for (int b = 0; b < kBins; ++b) {
+          (b < best_split ? left_box : right_box).add(bins[b]);
+          (b < best_split ? left_cbox : right_cbox).add(cbins[b]);
+        }
       }
     }
     if (use_median) {
@@ -154,17 +156,26 @@ class AabbTreeBuilder {
       std::nth_element(ids_.data() + begin, ids_.data() + mid, ids_.data() + end, [&](uint32_t x, uint32_t y) {
         return tris_[x].centroid[axis] < tris_[y].centroid[axis];
       });
+      bounds(begin, mid, left_box, left_cbox);
+      bounds(mid, end, right_box, right_cbox);
     }
 
     const uint32_t left = next.fetch_add(2);
     links_[2 * node] = left;
     links_[2 * node + 1] = 0;
     if (count > kParallelSize) {
-      tbb::parallel_invoke([&] { build(left, begin, mid, depth + 1); },
-                           [&] { build(left + 1, mid, end, depth + 1); });
+      tbb::parallel_invoke([&] { build(left, begin, mid, depth + 1, left_box, left_cbox); },
+                           [&] { build(left + 1, mid, end, depth + 1, right_box, right_cbox); });
     } else {
-      build(left, begin, mid, depth + 1);
-      build(left + 1, mid, end, depth + 1);
+      build(left, begin, mid, depth + 1, left_box, left_cbox);
+      build(left + 1, mid, end, depth + 1, right_box, right_cbox);
+    }
+  }
+
+  void bounds(uint32_t begin, uint32_t end, Box& box, Box& cbox) const {
+    for (uint32_t i = begin; i < end; ++i) {
+      box.add(tris_[ids_[i]].box);
+      cbox.add(tris_[ids_[i]].centroid);
     }
   }
 
@@ -227,7 +238,9 @@ void AabbTree::build(const std::vector<Vec3>& positions, const std::vector<Tri>&
   std::vector<float> boxes(6 * max_nodes, 0.0f);
   std::vector<uint32_t> links(2 * max_nodes, 0);
   AabbTreeBuilder builder(ids_, tris, boxes, links);
-  builder.build(0, 0, static_cast<uint32_t>(n), 0);
+  Box box, cbox;
+  builder.bounds(0, static_cast<uint32_t>(n), box, cbox);
+  builder.build(0, 0, static_cast<uint32_t>(n), 0, box, cbox);
 
   const size_t used = builder.next.load();
   nodes_.resize(used);

@@ -140,8 +140,10 @@ SurfaceSamples sample_surface(const Mesh& mesh, const SamplingOptions& options) 
   } else {
     double left = n - static_cast<double>(out.vertex_samples);
     if (left > 0 && options.edges && out.edge_length > 0) {
-      const double per_length =
-          options.faces && out.area > 0 ? std::sqrt(left / out.area) : left / out.edge_length;
+      // Metro's rule, except that the edges never take more than what is left (Metro would exceed the budget when
+      // it is below a few samples per face).
+      const double per_length = std::min(options.faces && out.area > 0 ? std::sqrt(left / out.area) : HUGE_VAL,
+                                         left / out.edge_length);
       out.edge_samples = diffuse_counts(lengths, per_length, edge_counts);
       left -= static_cast<double>(out.edge_samples);
     }

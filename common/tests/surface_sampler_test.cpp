@@ -39,6 +39,20 @@ TEST(SurfaceSampler, MetroBudget) {
   EXPECT_EQ(s.points.size(), s.vertex_samples + s.edge_samples + s.face_samples);
 }
 
+TEST(SurfaceSampler, MetroBudgetIsNeverExceededByTheEdges) {
+  const Mesh sphere = test::icosphere(4);  // 2562 vertices, 5120 faces: 5000 samples is under one per face
+  SamplingOptions o;
+  o.samples = 5000;
+  const SurfaceSamples s = sample_surface(sphere, o);
+  EXPECT_EQ(s.vertex_samples, 2562u);
+  EXPECT_NEAR(static_cast<double>(s.edge_samples), 5000.0 - 2562.0, 1.0);
+  EXPECT_LE(s.face_samples, 1u);
+  // More vertices than samples: every vertex all the same, nothing else.
+  o.samples = 1000;
+  const SurfaceSamples t = sample_surface(sphere, o);
+  EXPECT_EQ(t.points.size(), 2562u);
+}
+
 TEST(SurfaceSampler, PerKindBudget) {
   const Mesh sphere = test::icosphere(3);
   SamplingOptions o;

@@ -20,8 +20,10 @@ namespace prm {
 
 // How a sample budget is split between vertices, edges and faces.
 enum class SampleBudget {
-  // Metro's rule: `samples` in all. Every referenced vertex first; with the remaining n samples and the area a, the
-  // edges get sqrt(n / a) samples per unit length; what is then left goes to the faces, by area.
+  // Metro's rule: `samples` in all. Every referenced vertex first (even if there are more than `samples`); with the
+  // remaining n samples and the area a, the edges get sqrt(n / a) samples per unit length (so that they are about
+  // as dense along the edges as inside the faces), but never more than n in all; what is then left goes to the
+  // faces, by area. Below a few samples per face, the faces get none.
   Metro,
   // MeshLab's "Hausdorff Distance" filter: every referenced vertex, plus `samples` spread over the edges by length,
   // plus `samples` spread over the faces by area.
