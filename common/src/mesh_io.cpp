@@ -1,6 +1,7 @@
 // read_mesh / write_mesh: format dispatch and the cleanup every reader shares (triangulation, welding, dropping
 // unreferenced vertices).
 #include <algorithm>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -38,6 +39,13 @@ void write_file(const std::string& path, const std::string& bytes) {
   if (n != bytes.size() || err) throw IoError(path + ": write error");
 }
 
+void append_number(std::string& out, double v, bool as_float) {
+  char buf[32];
+  const std::to_chars_result r = as_float ? std::to_chars(buf, buf + sizeof buf, static_cast<float>(v))
+                                          : std::to_chars(buf, buf + sizeof buf, v);
+  out.append(buf, r.ptr);
+}
+
 void check_indices(const RawMesh& raw, const std::string& path) {
   const size_t nv = raw.positions.size();
   for (size_t k = 0; k < raw.num_polygons(); ++k) {
@@ -58,48 +66,68 @@ void check_finite(const RawMesh& raw, const std::string& path) {
 
 namespace {
 
-// Ear clipping in the plane of the polygon (Newell normal). Falls back to a fan if no ear is found (a polygon
-// whose corners are nearly collinear or self-intersecting).
-void triangulate(const std::vector<Vec3>& pos, const uint32_t* c, size_t n, std::vector<Tri>& out) {
+// Ear clipping in the plane of the polygon (Newell normal), walking a cursor round the ring so that a polygon of n
+// corners costs O(n^2). Falls back to a fan when no ear is found (corners nearly collinear, self-intersecting
+// polygon), for polygons above kMaxEarClipCorners and once the file has used up its work budget (a hostile file
+// could otherwise ask for O(n^3) work per polygon).
+constexpr size_t kMaxEarClipCorners = 256;
+
+struct Triangulator {
+  size_t budget = size_t{1} << 28;  // ear tests times ring size, over the whole file
+  size_t fan_fallbacks = 0;
+};
+
+void triangulate(const std::vector<Vec3>& pos, const uint32_t* c, size_t n, std::vector<Tri>& out, Triangulator& tr) {
   if (n == 3) {
     out.push_back({c[0], c[1], c[2]});
     return;
   }
-  Vec3 normal{0, 0, 0};
-  for (size_t i = 0; i < n; ++i) {
-    const Vec3& a = pos[c[i]];
-    const Vec3& b = pos[c[(i + 1) % n]];
-    normal[0] += (a[1] - b[1]) * (a[2] + b[2]);
-    normal[1] += (a[2] - b[2]) * (a[0] + b[0]);
-    normal[2] += (a[0] - b[0]) * (a[1] + b[1]);
-  }
   std::vector<uint32_t> ring(c, c + n);
-  auto convex = [&](uint32_t a, uint32_t b, uint32_t d) {
-    return dot(cross(pos[b] - pos[a], pos[d] - pos[b]), normal) > 0;
-  };
-  auto inside = [&](uint32_t p, uint32_t a, uint32_t b, uint32_t d) {
-    const Vec3& x = pos[p];
-    return dot(cross(pos[b] - pos[a], x - pos[a]), normal) >= 0 && dot(cross(pos[d] - pos[b], x - pos[b]), normal) >= 0 &&
-           dot(cross(pos[a] - pos[d], x - pos[d]), normal) >= 0;
-  };
-  size_t guard = 0;
-  while (ring.size() > 3 && guard++ < 4 * n * n) {
-    bool clipped = false;
-    for (size_t i = 0; i < ring.size() && !clipped; ++i) {
-      const uint32_t a = ring[(i + ring.size() - 1) % ring.size()], b = ring[i], d = ring[(i + 1) % ring.size()];
-      if (!convex(a, b, d)) continue;
-      bool ear = true;
-      for (uint32_t p : ring)
-        if (p != a && p != b && p != d && pos[p] != pos[a] && pos[p] != pos[b] && pos[p] != pos[d] && inside(p, a, b, d)) {
-          ear = false;
-          break;
-        }
-      if (!ear) continue;
-      out.push_back({a, b, d});
-      ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(i));
-      clipped = true;
+  if (n <= kMaxEarClipCorners && tr.budget > 0) {
+    Vec3 normal{0, 0, 0};
+    for (size_t i = 0; i < n; ++i) {
+      const Vec3& a = pos[c[i]];
+      const Vec3& b = pos[c[(i + 1) % n]];
+      normal[0] += (a[1] - b[1]) * (a[2] + b[2]);
+      normal[1] += (a[2] - b[2]) * (a[0] + b[0]);
+      normal[2] += (a[0] - b[0]) * (a[1] + b[1]);
     }
-    if (!clipped) break;
+    auto convex = [&](uint32_t a, uint32_t b, uint32_t d) {
+      return dot(cross(pos[b] - pos[a], pos[d] - pos[b]), normal) > 0;
+    };
+    auto inside = [&](uint32_t p, uint32_t a, uint32_t b, uint32_t d) {
+      const Vec3& x = pos[p];
+      return dot(cross(pos[b] - pos[a], x - pos[a]), normal) >= 0 &&
+             dot(cross(pos[d] - pos[b], x - pos[b]), normal) >= 0 &&
+             dot(cross(pos[a] - pos[d], x - pos[d]), normal) >= 0;
+    };
+    auto is_ear = [&](size_t i) {
+      const size_t m = ring.size();
+      tr.budget -= std::min(tr.budget, m);
+      const uint32_t a = ring[(i + m - 1) % m], b = ring[i], d = ring[(i + 1) % m];
+      if (!convex(a, b, d)) return false;
+      for (uint32_t p : ring)
+        if (p != a && p != b && p != d && pos[p] != pos[a] && pos[p] != pos[b] && pos[p] != pos[d] &&
+            inside(p, a, b, d))
+          return false;
+      return true;
+    };
+    size_t i = 0, misses = 0;
+    while (ring.size() > 3 && misses < ring.size() && tr.budget > 0) {
+      if (!is_ear(i)) {
+        i = (i + 1) % ring.size();
+        ++misses;
+        continue;
+      }
+      const size_t m = ring.size();
+      out.push_back({ring[(i + m - 1) % m], ring[i], ring[(i + 1) % m]});
+      ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(i));
+      if (i >= ring.size()) i = 0;
+      misses = 0;
+    }
+    if (ring.size() > 3) ++tr.fan_fallbacks;
+  } else {
+    ++tr.fan_fallbacks;
   }
   for (size_t i = 1; i + 1 < ring.size(); ++i) out.push_back({ring[0], ring[i], ring[i + 1]});
 }
@@ -131,23 +159,28 @@ std::vector<uint32_t> weld_map(const std::vector<Vec3>& pos, double tol) {
     }
     return rep;
   }
-  // Tolerance: a hash grid of cell size tol; each vertex joins the first earlier vertex within tol.
+  // Tolerance: a hash grid of cell size tol; each vertex joins the first earlier vertex within tol, looking in its
+  // own cell and the 26 around it. Cell coordinates are clamped so that a tiny tolerance on large coordinates cannot
+  // overflow (the distance test decides anyway).
   struct Cell {
     int64_t x, y, z;
     bool operator==(const Cell& o) const { return x == o.x && y == o.y && z == o.z; }
   };
   struct CellHash {
     size_t operator()(const Cell& c) const {
-      return static_cast<size_t>((c.x * 73856093) ^ (c.y * 19349663) ^ (c.z * 83492791));
+      const uint64_t h = static_cast<uint64_t>(c.x) * 73856093u ^ static_cast<uint64_t>(c.y) * 19349663u ^
+                         static_cast<uint64_t>(c.z) * 83492791u;
+      return static_cast<size_t>(h ^ (h >> 29));
     }
   };
   std::unordered_map<Cell, std::vector<uint32_t>, CellHash> grid;
-  auto cell_of = [&](const Vec3& p) {
-    return Cell{static_cast<int64_t>(std::floor(p[0] / tol)), static_cast<int64_t>(std::floor(p[1] / tol)),
-                static_cast<int64_t>(std::floor(p[2] / tol))};
+  auto coord = [&](double x) {
+    const double q = std::floor(x / tol);
+    constexpr double kLimit = 4e18;
+    return static_cast<int64_t>(std::max(-kLimit, std::min(kLimit, q)));
   };
   for (uint32_t v = 0; v < pos.size(); ++v) {
-    const Cell c = cell_of(pos[v]);
+    const Cell c{coord(pos[v][0]), coord(pos[v][1]), coord(pos[v][2])};
     rep[v] = v;
     for (int64_t dx = -1; dx <= 1 && rep[v] == v; ++dx)
       for (int64_t dy = -1; dy <= 1 && rep[v] == v; ++dy)
@@ -187,14 +220,17 @@ Mesh finish_mesh(RawMesh raw, const ReadOptions& options, bool weld_auto, ReadRe
   // Triangles; a polygon's properties go to each of its triangles.
   std::vector<uint32_t> tri_polygon;
   std::vector<Tri> tris;
+  Triangulator triangulator;
   for (size_t k = 0; k < raw.num_polygons(); ++k) {
     const uint32_t b = raw.polygon_start[k], e = raw.polygon_start[k + 1];
-    const size_t before = tris.size();
-    triangulate(raw.positions, raw.corners.data() + b, e - b, tris);
+    triangulate(raw.positions, raw.corners.data() + b, e - b, tris, triangulator);
     if (e - b > 3) ++report.polygons_triangulated;
     tri_polygon.resize(tris.size(), static_cast<uint32_t>(k));
-    (void)before;
   }
+  if (triangulator.fan_fallbacks)
+    report.notes.push_back(std::to_string(triangulator.fan_fallbacks) +
+                           " polygon(s) could not be ear-clipped (self-intersecting, collinear or huge) and were "
+                           "split as fans");
   // Drop triangles that use a vertex twice (after welding).
   std::vector<Tri> kept;
   std::vector<uint32_t> kept_polygon;
@@ -281,22 +317,34 @@ const char* format_name(MeshFormat f) {
 
 namespace {
 
-// The format from the first bytes, for files whose extension says nothing.
+// The format from the first bytes (and the size, for binary STL), for files whose extension says nothing.
 MeshFormat sniff(const std::string& path) {
   std::FILE* f = std::fopen(path.c_str(), "rb");
   if (!f) throw IoError(path + ": cannot open (" + std::strerror(errno) + ")");
-  char head[96] = {0};
-  const size_t n = std::fread(head, 1, sizeof head - 1, f);
+  char head[256] = {0};
+  const size_t n = std::fread(head, 1, sizeof head, f);
+  long size = -1;
+  if (std::fseek(f, 0, SEEK_END) == 0) size = std::ftell(f);
   std::fclose(f);
   const std::string s(head, n);
   if (s.rfind("ply", 0) == 0) return MeshFormat::Ply;
   if (s.rfind("glTF", 0) == 0) return MeshFormat::Glb;
-  if (s.find("OFF") != std::string::npos && s.find("OFF") < 8) return MeshFormat::Off;
-  if (s.rfind("solid", 0) == 0 || n >= 84) {
-    if (s.rfind("solid", 0) == 0) return MeshFormat::Stl;
+  if (n >= 84 && size >= 84) {
+    uint32_t count;
+    std::memcpy(&count, head + 80, 4);
+    if (static_cast<uint64_t>(size) == 84 + 50 * uint64_t{count}) return MeshFormat::Stl;
   }
-  if (s.find('{') != std::string::npos && s.find("asset") != std::string::npos) return MeshFormat::Gltf;
-  if (s.find("v ") != std::string::npos || s.rfind("#", 0) == 0) return MeshFormat::Obj;
+  if (s.rfind("solid", 0) == 0) return MeshFormat::Stl;
+  const size_t first = s.find_first_not_of(" \t\r\n");
+  if (first != std::string::npos) {
+    const size_t end = s.find_first_of(" \t\r\n", first);
+    const std::string word = s.substr(first, end == std::string::npos ? std::string::npos : end - first);
+    if (word.size() >= 3 && word.size() <= 6 && word.compare(word.size() - 3, 3, "OFF") == 0) return MeshFormat::Off;
+    if (s[first] == '{') return MeshFormat::Gltf;
+    if (word == "v" || word == "vn" || word == "vt" || word == "o" || word == "g" || word == "mtllib" ||
+        word[0] == '#')
+      return MeshFormat::Obj;
+  }
   return MeshFormat::Auto;
 }
 
@@ -328,6 +376,11 @@ Mesh read_mesh(const std::string& path, const ReadOptions& options, ReadReport* 
       break;
     case MeshFormat::Auto: break;
   }
+  if (raw.num_polygons() == 0)
+    io::fail(path, "the file has no faces" +
+                       (raw.positions.empty() ? std::string()
+                                              : " (only " + std::to_string(raw.positions.size()) +
+                                                    " vertices: a point cloud is not a mesh)"));
   io::check_indices(raw, path);
   io::check_finite(raw, path);
   return io::finish_mesh(std::move(raw), options, weld_auto, r);

@@ -1,6 +1,7 @@
 // glTF 2.0 and GLB through tinygltf (compiled privately: gltf_ext/src/tinygltf_unit.cpp): the positions and indices of
 // every TRIANGLES (and TRIANGLE_STRIP / TRIANGLE_FAN) primitive of every mesh, placed by the node transforms of the
 // default scene (meshes no node uses are read untransformed). Writing: one mesh, float positions, uint32 indices.
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -77,11 +78,17 @@ View accessor_view(const prm_tinygltf::Model& m, int index, const std::string& p
   v.elem = static_cast<size_t>(csize) * static_cast<size_t>(ncomp);
   v.stride = bv.byteStride ? bv.byteStride : v.elem;
   v.count = a.count;
-  const uint64_t start = uint64_t{bv.byteOffset} + a.byteOffset;
-  const uint64_t need = v.count ? start + (v.count - 1) * uint64_t{v.stride} + v.elem : start;
-  if (v.stride < v.elem || need > uint64_t{bv.byteOffset} + bv.byteLength || uint64_t{bv.byteOffset} + bv.byteLength > buf.data.size())
-    fail(path, std::string(what) + " accessor reaches past the end of its buffer (" + std::to_string(need) + " > " +
-                   std::to_string(buf.data.size()) + " bytes)");
+  // Without overflow: a hostile offset or count must not wrap round into an in-bounds size.
+  const uint64_t size = buf.data.size();
+  const bool view_ok = bv.byteOffset <= size && bv.byteLength <= size - bv.byteOffset;
+  const uint64_t view_end = view_ok ? uint64_t{bv.byteOffset} + bv.byteLength : 0;
+  const bool start_ok = view_ok && a.byteOffset <= bv.byteLength;
+  const uint64_t start = start_ok ? uint64_t{bv.byteOffset} + a.byteOffset : 0;
+  if (v.stride < v.elem || !start_ok ||
+      (v.count > 0 && (view_end - start < v.elem || (v.count - 1) > (view_end - start - v.elem) / v.stride)))
+    fail(path, std::string(what) + " accessor claims " + std::to_string(v.count) +
+                   " elements, which reach past the end of its buffer view (" + std::to_string(bv.byteLength) +
+                   " bytes; buffer " + std::to_string(buf.data.size()) + " bytes)");
   v.data = buf.data.data() + start;
   return v;
 }
@@ -97,7 +104,7 @@ uint32_t read_index(const View& v, size_t i) {
 }
 
 void add_primitive(const prm_tinygltf::Model& m, const prm_tinygltf::Primitive& prim, const Mat4& xf,
-                   const std::string& path, RawMesh& raw) {
+                   const std::string& path, RawMesh& raw, uint64_t max_vertices) {
   const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
   if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) {
     raw.notes.push_back("a primitive that is not made of triangles (points or lines) was skipped");
@@ -107,6 +114,9 @@ void add_primitive(const prm_tinygltf::Model& m, const prm_tinygltf::Primitive& 
   if (it == prim.attributes.end()) fail(path, "a triangle primitive has no POSITION attribute");
   const View pv = accessor_view(m, it->second, path, "POSITION");
   if (pv.component != TINYGLTF_COMPONENT_TYPE_FLOAT || pv.elem != 12) fail(path, "POSITION must be float VEC3");
+  if (raw.positions.size() + uint64_t{pv.count} > max_vertices)
+    fail(path, "the nodes instance the meshes into more than " + std::to_string(max_vertices) +
+                   " vertices (far more than the file stores)");
   const uint32_t base = static_cast<uint32_t>(raw.positions.size());
   for (size_t i = 0; i < pv.count; ++i) {
     float p[3];
@@ -160,13 +170,22 @@ RawMesh read_gltf(const std::string& path) {
   const std::vector<char> head = read_file(path);  // also reports a missing file as IoError
   if (head.empty()) fail(path, "the file is empty");
   const bool binary = head.size() >= 4 && std::memcmp(head.data(), "glTF", 4) == 0;
-  const bool ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
-                         : loader.LoadASCIIFromFile(&model, &err, &warn, path);
+  bool ok = false;
+  try {
+    ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
+                : loader.LoadASCIIFromFile(&model, &err, &warn, path);
+  } catch (const std::exception& e) {  // nlohmann-json can throw on malformed JSON inside tinygltf
+    err = e.what();
+  }
   if (!ok) {
     while (!err.empty() && (err.back() == '\n')) err.pop_back();
     fail(path, "malformed glTF: " + (err.empty() ? std::string("tinygltf failed") : err));
   }
   RawMesh raw;
+  // Nodes may place one mesh many times; a small file must not expand without bound.
+  uint64_t buffer_bytes = 0;
+  for (const auto& b : model.buffers) buffer_bytes += b.data.size();
+  const uint64_t max_vertices = std::min<uint64_t>(kMaxElements, 16 * (buffer_bytes / 12) + (uint64_t{1} << 20));
   std::vector<uint8_t> used(model.meshes.size(), 0);
   const int scene = model.defaultScene >= 0 ? model.defaultScene : (model.scenes.empty() ? -1 : 0);
   if (scene >= 0 && static_cast<size_t>(scene) < model.scenes.size()) {
@@ -189,15 +208,14 @@ RawMesh read_gltf(const std::string& path) {
       if (node.mesh >= 0) {
         if (static_cast<size_t>(node.mesh) >= model.meshes.size()) fail(path, "mesh index out of range");
         used[static_cast<size_t>(node.mesh)] = 1;
-        for (const auto& prim : model.meshes[static_cast<size_t>(node.mesh)].primitives) add_primitive(model, prim, xf, path, raw);
+        for (const auto& prim : model.meshes[static_cast<size_t>(node.mesh)].primitives) add_primitive(model, prim, xf, path, raw, max_vertices);
       }
       for (int c : node.children) stack.push_back({c, xf, it.depth + 1});
     }
   }
   for (size_t m = 0; m < model.meshes.size(); ++m)
     if (!used[m])
-      for (const auto& prim : model.meshes[m].primitives) add_primitive(model, prim, identity(), path, raw);
-  if (raw.num_polygons() == 0) fail(path, "the file has no triangles");
+      for (const auto& prim : model.meshes[m].primitives) add_primitive(model, prim, identity(), path, raw, max_vertices);
   raw.file_vertices = raw.positions.size();
   raw.file_faces = raw.num_polygons();
   if (!warn.empty()) raw.notes.push_back("tinygltf: " + warn.substr(0, warn.find('\n')));

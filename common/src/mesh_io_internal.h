@@ -35,6 +35,10 @@ struct RawMesh {
 std::vector<char> read_file(const std::string& path);
 void write_file(const std::string& path, const std::string& bytes);
 
+// The shortest decimal text that reads back to exactly v (as a float when as_float, else as a double): text formats
+// round-trip exactly.
+void append_number(std::string& out, double v, bool as_float);
+
 // "<path>: <what>" for messages.
 [[noreturn]] void fail(const std::string& path, const std::string& what);
 

@@ -13,6 +13,7 @@ RawMesh read_off(const std::string& path) {
   if (data.empty()) fail(path, "the file is empty");
   TextScanner in(data.data(), data.data() + data.size(), path, '#');
   RawMesh raw;
+  in.collect_comments(&raw.comments);
   std::string_view head = in.token("the OFF keyword");
   // The keyword may carry prefixes (ST, C, N, 4, n) and may be followed by the counts on the same line.
   if (head.size() < 3 || head.substr(head.size() - 3) != "OFF") fail(path, "not an OFF file: it does not start with OFF");
@@ -53,19 +54,26 @@ RawMesh read_off(const std::string& path) {
     raw.add_polygon(poly.data(), poly.size());
   }
   raw.file_faces = static_cast<size_t>(nf);
-  if (!in.at_end()) raw.notes.push_back("text after the last face was ignored");
-  if (nf == 0) fail(path, "the file has no faces");
+  if (!in.at_end())
+    raw.notes.push_back("text after the last of the " + std::to_string(nf) +
+                        " faces the header announces was ignored (line " + std::to_string(in.line()) + ")");
   return raw;
 }
 
 void write_off(const Mesh& mesh, const std::string& path) {
-  std::string out = "OFF\n" + std::to_string(mesh.positions.size()) + " " + std::to_string(mesh.triangles.size()) + " 0\n";
-  char buf[96];
+  std::string out = "OFF\n";
+  for (const std::string& c : mesh.comments)
+    if (c.find('\n') == std::string::npos) out += "# " + c + "\n";
+  out += std::to_string(mesh.positions.size()) + " " + std::to_string(mesh.triangles.size()) + " 0\n";
   for (const Vec3& p : mesh.positions) {
-    std::snprintf(buf, sizeof buf, "%.9g %.9g %.9g\n", p[0], p[1], p[2]);
-    out += buf;
+    for (size_t a = 0; a < 3; ++a) {
+      if (a) out += ' ';
+      append_number(out, p[a], false);  // shortest exact text: a write/read round trip is lossless
+    }
+    out += '\n';
   }
-  for (const Tri& t : mesh.triangles) out += "3 " + std::to_string(t[0]) + " " + std::to_string(t[1]) + " " + std::to_string(t[2]) + "\n";
+  for (const Tri& t : mesh.triangles)
+    out += "3 " + std::to_string(t[0]) + " " + std::to_string(t[1]) + " " + std::to_string(t[2]) + "\n";
   write_file(path, out);
 }
 

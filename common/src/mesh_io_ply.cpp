@@ -67,6 +67,22 @@ const char* type_name(ScalarType t) {
   return "float";
 }
 
+// Whether v is a value of type t (integers in range; any float, NaN included, for the float types).
+bool fits(ScalarType t, double v) {
+  auto in = [&](double lo, double hi) { return v >= lo && v <= hi && v == std::floor(v); };
+  switch (t) {
+    case ScalarType::Int8: return in(-128, 127);
+    case ScalarType::UInt8: return in(0, 255);
+    case ScalarType::Int16: return in(-32768, 32767);
+    case ScalarType::UInt16: return in(0, 65535);
+    case ScalarType::Int32: return in(-2147483648.0, 2147483647.0);
+    case ScalarType::UInt32: return in(0, 4294967295.0);
+    case ScalarType::Float32: return !std::isfinite(v) || std::fabs(v) <= 3.4028234663852886e38;
+    case ScalarType::Float64: return true;
+  }
+  return false;
+}
+
 // Reads the values of a file body: binary or ASCII, one scalar at a time.
 class BodyReader {
  public:
@@ -77,8 +93,12 @@ class BodyReader {
   double read(ScalarType t, const char* what) {
     if (enc_ == Encoding::Ascii) {
       const std::string_view tok = text_.token(what);
-      if (t == ScalarType::Float32 || t == ScalarType::Float64) return text_.parse_double(tok, what);
-      return static_cast<double>(text_.parse_int(tok, what));
+      // A float property holds float values: the text of one is rounded as the binary form would be.
+      if (t == ScalarType::Float32) return static_cast<float>(text_.parse_double(tok, what));
+      if (t == ScalarType::Float64) return text_.parse_double(tok, what);
+      const double v = static_cast<double>(text_.parse_int(tok, what));
+      if (!fits(t, v)) text_.fail(std::to_string(text_.parse_int(tok, what)) + " does not fit a " + type_name(t) + " (" + what + ")");
+      return v;
     }
     const size_t n = type_size(t);
     if (pos_ + n > data_.size()) fail(path_, std::string("file ends inside ") + what + " (truncated)");
@@ -197,6 +217,7 @@ RawMesh read_ply(const std::string& path, bool keep_properties) {
 
   BodyReader body(data, line_start, enc, path);
   bool have_vertices = false;
+  size_t strip_skipped = 0;
   for (const PlyElement& e : elements) {
     // A lying count: the bytes left cannot hold it. Checked before anything is allocated.
     const uint64_t need = e.count * min_element_bytes(e, enc);
@@ -218,6 +239,7 @@ RawMesh read_ply(const std::string& path, bool keep_properties) {
         ilist = static_cast<int>(k);
     }
     if (is_vertex) {
+      if (have_vertices) fail(path, "the header has two vertex elements");
       if (ix < 0 || iy < 0 || iz < 0) fail(path, "the vertex element has no x, y and z properties");
       raw.positions.resize(e.count);
       raw.file_vertices = e.count;
@@ -292,7 +314,10 @@ RawMesh read_ply(const std::string& path, bool keep_properties) {
           const size_t k = run - 3;
           uint32_t t[3] = {poly[j - 2], poly[j - 1], poly[j]};
           if (k % 2) std::swap(t[0], t[1]);
-          if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) continue;
+          if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) {
+            ++strip_skipped;
+            continue;
+          }
           raw.add_polygon(t, 3);
           ++raw.strip_triangles;
         }
@@ -301,21 +326,29 @@ RawMesh read_ply(const std::string& path, bool keep_properties) {
     // Faces of a tristrips-only file keep no per-face properties (strips have none per triangle).
   }
   if (!have_vertices) fail(path, "the file has no vertex element");
-  if (raw.num_polygons() == 0) fail(path, "the file has no faces");
+  if (strip_skipped)
+    raw.notes.push_back(std::to_string(strip_skipped) + " strip triangles that repeat a vertex (strip joins) were skipped");
   if (raw.strip_triangles && !raw.face_properties.empty()) raw.face_properties.clear();
-  if (!body.at_end()) raw.notes.push_back("bytes after the last element were ignored");
+  if (!body.at_end())
+    raw.notes.push_back(std::to_string(body.remaining()) +
+                        " bytes after the last element the header announces were ignored");
   return raw;
 }
 
 namespace {
 
-void put(std::string& out, double v, ScalarType t, bool binary) {
+void put(std::string& out, double v, ScalarType t, bool binary, const std::string& name) {
+  if (!fits(t, v))
+    throw std::invalid_argument("write_ply: property '" + name + "' holds " + std::to_string(v) +
+                                ", which a " + type_name(t) + " cannot represent");
   if (!binary) {
-    char buf[32];
-    if (t == ScalarType::Float32) std::snprintf(buf, sizeof buf, "%.9g", v);
-    else if (t == ScalarType::Float64) std::snprintf(buf, sizeof buf, "%.17g", v);
-    else std::snprintf(buf, sizeof buf, "%lld", static_cast<long long>(v));
-    out += buf;
+    if (t == ScalarType::Float32 || t == ScalarType::Float64) {
+      append_number(out, v, t == ScalarType::Float32);  // shortest exact text
+    } else {
+      char buf[32];
+      std::snprintf(buf, sizeof buf, "%lld", static_cast<long long>(v));
+      out += buf;
+    }
     return;
   }
   unsigned char b[8];
@@ -357,19 +390,19 @@ void write_ply(const Mesh& mesh, const std::string& path, const WriteOptions& op
   for (size_t v = 0; v < mesh.positions.size(); ++v) {
     for (int a = 0; a < 3; ++a) {
       if (!binary && a) out += ' ';
-      put(out, mesh.positions[v][static_cast<size_t>(a)], pt, binary);
+      put(out, mesh.positions[v][static_cast<size_t>(a)], pt, binary, "position");
     }
     if (props)
       for (const Property& p : mesh.vertex_properties) {
         if (!binary) out += ' ';
-        put(out, p.values.at(v), p.type, binary);
+        put(out, p.values.at(v), p.type, binary, p.name);
       }
     if (!binary) out += '\n';
   }
   for (size_t f = 0; f < mesh.triangles.size(); ++f) {
     if (binary) {
       out += static_cast<char>(3);
-      for (uint32_t v : mesh.triangles[f]) put(out, v, ScalarType::Int32, true);
+      for (uint32_t v : mesh.triangles[f]) put(out, v, ScalarType::Int32, true, "vertex_indices");
     } else {
       out += "3 " + std::to_string(mesh.triangles[f][0]) + " " + std::to_string(mesh.triangles[f][1]) + " " +
              std::to_string(mesh.triangles[f][2]);
@@ -377,7 +410,7 @@ void write_ply(const Mesh& mesh, const std::string& path, const WriteOptions& op
     if (props)
       for (const Property& p : mesh.face_properties) {
         if (!binary) out += ' ';
-        put(out, p.values.at(f), p.type, binary);
+        put(out, p.values.at(f), p.type, binary, p.name);
       }
     if (!binary) out += '\n';
   }

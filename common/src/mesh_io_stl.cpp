@@ -1,6 +1,8 @@
 // STL, binary (80-byte header, uint32 count, 50 bytes per triangle) and ASCII ("solid ... facet ... vertex x y z").
 // A file is binary when its size is exactly 84 + 50 n for the count n it states, even if it starts with "solid".
 // STL stores every corner separately: read_mesh() welds coincident corners (exactly, by default).
+#include <algorithm>
+#include <cctype>
 #include <cstring>
 
 #include "mesh_io_internal.h"
@@ -15,7 +17,13 @@ RawMesh read_stl(const std::string& path) {
   uint32_t count = 0;
   if (data.size() >= 84) std::memcpy(&count, data.data() + 80, 4);
   const bool binary = data.size() >= 84 && data.size() == 84 + 50 * static_cast<uint64_t>(count);
-  const bool starts_solid = data.size() >= 5 && std::memcmp(data.data(), "solid", 5) == 0;
+  // Binary files often start with "solid" too: one whose first bytes are not text is binary whatever its header says.
+  bool text = true;
+  for (size_t i = 0; i < std::min<size_t>(data.size(), 512) && text; ++i) {
+    const unsigned char c = static_cast<unsigned char>(data[i]);
+    text = c >= 32 ? c < 127 : (c == '\n' || c == '\r' || c == '\t' || c == '\f' || c == '\v');
+  }
+  const bool starts_solid = data.size() >= 5 && std::memcmp(data.data(), "solid", 5) == 0 && text;
   if (binary) {
     raw.positions.reserve(size_t{3} * count);
     for (uint32_t t = 0; t < count; ++t) {
@@ -79,9 +87,8 @@ RawMesh read_stl(const std::string& path) {
       fail(path, "binary STL size is " + std::to_string(data.size()) + " bytes, but its header states " +
                      std::to_string(count) + " triangles (" + std::to_string(84 + 50 * uint64_t{count}) +
                      " bytes): truncated or not an STL file");
-    fail(path, "not an STL file (too short for binary STL, no 'solid' keyword)");
+    fail(path, "not an STL file (" + std::to_string(data.size()) + " bytes: too short for binary STL, no 'solid' keyword)");
   }
-  if (raw.num_polygons() == 0) fail(path, "the file has no triangles");
   raw.file_vertices = raw.positions.size();
   return raw;
 }

@@ -1,29 +1,176 @@
+// prm repair: drop degenerate and duplicate faces, flip away zero-area slivers, close every hole with a fan around
+// the centroid of its boundary loop (paper §4: "patching each hole with a closed triangle fan centered at the average
+// of all vertices bounding the hole"). Sort-based; refuses what it cannot repair without guessing (non-manifold or
+// inconsistently oriented input).
 #include "prm/mesh_repair.h"
 
 #include <algorithm>
-#include <map>
+#include <numeric>
+#include <stdexcept>
 
 #include "prm/error.h"
 #include "prm/mesh_validate.h"
 #include "prm/vec3.h"
 
 namespace prm {
+namespace {
+
+bool repeats_vertex(const Tri& t) { return t[0] == t[1] || t[1] == t[2] || t[0] == t[2]; }
+
+double area2(const Mesh& m, const Tri& t) {
+  return norm(triangle_normal_area2(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]));
+}
+
+// Zero-area triangles with three distinct vertices: one vertex lies on the segment of the other two (a "cap").
+// Flipping that longest edge with the neighbouring triangle splits the neighbour at the middle vertex and removes the
+// sliver without changing the surface. Done only when the flip is safe: the neighbour exists, the new edge is not
+// already an edge, and both new triangles have area. Returns the number of flips; the rest stay (counted by the caller).
+size_t flip_zero_area_faces(Mesh& m, double eps2) {
+  const size_t nv = m.positions.size();
+  std::vector<uint32_t> zero;
+  for (uint32_t f = 0; f < m.triangles.size(); ++f)
+    if (area2(m, m.triangles[f]) <= eps2) zero.push_back(f);
+  if (zero.empty()) return 0;
+  std::vector<std::vector<uint32_t>> faces_of(nv);
+  for (uint32_t f = 0; f < m.triangles.size(); ++f)
+    for (uint32_t v : m.triangles[f]) faces_of[v].push_back(f);
+  auto has_directed = [&](uint32_t f, uint32_t a, uint32_t b) {
+    const Tri& t = m.triangles[f];
+    for (int k = 0; k < 3; ++k)
+      if (t[k] == a && t[(k + 1) % 3] == b) return true;
+    return false;
+  };
+  auto edge_exists = [&](uint32_t a, uint32_t b) {
+    for (uint32_t f : faces_of[a])
+      for (uint32_t v : m.triangles[f])
+        if (v == b) return true;
+    return false;
+  };
+  auto move_face = [&](uint32_t f, uint32_t from, uint32_t to) {
+    auto& list = faces_of[from];
+    list.erase(std::find(list.begin(), list.end(), f));
+    faces_of[to].push_back(f);
+  };
+  size_t flips = 0;
+  // A flip can make a neighbour's sliver flippable: a few passes, each bounded by the number of slivers.
+  for (int pass = 0; pass < 4; ++pass) {
+    size_t before = flips;
+    for (uint32_t f : zero) {
+      const Tri t = m.triangles[f];
+      if (area2(m, t) > eps2) continue;
+      // The longest edge (a, b) in face order; c is the vertex opposite, on the segment.
+      int k = 0;
+      double best = -1;
+      for (int i = 0; i < 3; ++i) {
+        const double len = norm2(m.positions[t[(i + 1) % 3]] - m.positions[t[i]]);
+        if (len > best) best = len, k = i;
+      }
+      const uint32_t a = t[k], b = t[(k + 1) % 3], c = t[(k + 2) % 3];
+      uint32_t g = UINT32_MAX;
+      for (uint32_t h : faces_of[a])
+        if (h != f && has_directed(h, b, a)) g = h;
+      if (g == UINT32_MAX) continue;
+      const Tri& u = m.triangles[g];
+      const uint32_t d = u[0] != a && u[0] != b ? u[0] : u[1] != a && u[1] != b ? u[1] : u[2];
+      if (d == c || edge_exists(c, d)) continue;
+      const Tri f_new = {c, a, d}, g_new = {c, d, b};
+      if (area2(m, f_new) <= eps2 || area2(m, g_new) <= eps2) continue;
+      m.triangles[f] = f_new;
+      m.triangles[g] = g_new;
+      move_face(f, b, d);
+      move_face(g, a, c);
+      ++flips;
+    }
+    if (flips == before) break;
+  }
+  return flips;
+}
+
+struct UnionFind {
+  std::vector<uint32_t> p;
+  explicit UnionFind(size_t n) : p(n) { std::iota(p.begin(), p.end(), 0u); }
+  uint32_t find(uint32_t x) {
+    while (p[x] != x) x = p[x] = p[p[x]];
+    return x;
+  }
+  void unite(uint32_t a, uint32_t b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) p[std::max(a, b)] = std::min(a, b);
+  }
+};
+
+// Corners of one vertex are joined across every edge with two faces; a vertex whose corners form several groups is
+// pinched. Requires no edge with three or more faces. Returns the number of vertices added.
+size_t split_pinched_vertices(Mesh& m) {
+  const size_t nf = m.triangles.size();
+  struct HalfEdge {
+    uint32_t lo, hi, corner;  // corner: 3 * face + k, the edge runs from corner k to corner k + 1
+  };
+  std::vector<HalfEdge> he;
+  he.reserve(3 * nf);
+  for (uint32_t f = 0; f < nf; ++f)
+    for (uint32_t k = 0; k < 3; ++k) {
+      const uint32_t a = m.triangles[f][k], b = m.triangles[f][(k + 1) % 3];
+      he.push_back({std::min(a, b), std::max(a, b), 3 * f + k});
+    }
+  std::sort(he.begin(), he.end(), [](const HalfEdge& x, const HalfEdge& y) {
+    return x.lo != y.lo ? x.lo < y.lo : x.hi != y.hi ? x.hi < y.hi : x.corner < y.corner;
+  });
+  UnionFind corners(3 * nf);
+  auto next_corner = [](uint32_t c) { return c - c % 3 + (c % 3 + 1) % 3; };
+  auto vertex_at = [&](uint32_t c) { return m.triangles[c / 3][c % 3]; };
+  for (size_t i = 0; i + 1 < he.size(); ++i) {
+    if (he[i].lo != he[i + 1].lo || he[i].hi != he[i + 1].hi) continue;
+    // The two corners at each end of the shared edge belong to the same fan.
+    const uint32_t c1 = he[i].corner, c2 = he[i + 1].corner;
+    const uint32_t c1n = next_corner(c1), c2n = next_corner(c2);
+    if (vertex_at(c1) == vertex_at(c2)) {
+      corners.unite(c1, c2);
+      corners.unite(c1n, c2n);
+    } else {
+      corners.unite(c1, c2n);
+      corners.unite(c1n, c2);
+    }
+  }
+  std::vector<uint32_t> first_root(m.positions.size(), UINT32_MAX);
+  std::vector<uint32_t> copy_of_root(3 * nf, UINT32_MAX);
+  size_t added = 0;
+  for (uint32_t c = 0; c < 3 * nf; ++c) {
+    const uint32_t v = vertex_at(c), root = corners.find(c);
+    if (first_root[v] == UINT32_MAX) first_root[v] = root;
+    if (root == first_root[v]) continue;
+    if (copy_of_root[root] == UINT32_MAX) {
+      copy_of_root[root] = static_cast<uint32_t>(m.positions.size());
+      m.positions.push_back(m.positions[v]);
+      ++added;
+    }
+    m.triangles[c / 3][c % 3] = copy_of_root[root];
+  }
+  return added;
+}
+
+}  // namespace
 
 Mesh repair_mesh(const Mesh& in, RepairReport* report) {
   RepairReport local;
   RepairReport& r = report ? *report : local;
   r = RepairReport{};
+  const size_t nv = in.positions.size();
+  for (const Tri& t : in.triangles)
+    for (uint32_t v : t)
+      if (v >= nv) throw std::invalid_argument("repair_mesh: a triangle uses vertex " + std::to_string(v) + " of " +
+                                               std::to_string(nv));
   Mesh m;
   m.positions = in.positions;
   m.comments = in.comments;
-  // Faces: drop those using a vertex twice and repeats of an earlier face (in either orientation).
-  std::vector<std::array<uint32_t, 3>> seen;
-  seen.reserve(in.triangles.size());
+
+  // Faces using a vertex twice, then repeats of an earlier face's vertex set (either orientation; the first stays).
   std::vector<std::pair<std::array<uint32_t, 3>, uint32_t>> keyed;
   keyed.reserve(in.triangles.size());
   for (uint32_t f = 0; f < in.triangles.size(); ++f) {
     const Tri& t = in.triangles[f];
-    if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) {
+    if (repeats_vertex(t)) {
       ++r.repeated_index_removed;
       continue;
     }
@@ -43,40 +190,72 @@ Mesh repair_mesh(const Mesh& in, RepairReport* report) {
   for (uint32_t f = 0; f < in.triangles.size(); ++f)
     if (keep[f]) m.triangles.push_back(in.triangles[f]);
 
+  // What cannot be repaired without guessing.
   const MeshReport check = validate_mesh(m);
-  if (!check.manifold() || !check.oriented()) {
-    std::string why = check.examples.empty() ? std::string() : ": " + check.examples.front();
-    for (const std::string& e : check.examples)
-      if (e.find("faces") != std::string::npos || e.find("pinched") != std::string::npos || e.find("same way") != std::string::npos) {
-        why = ": " + e;
-        break;
-      }
-    throw InputError("cannot repair safely: the mesh is " +
-                     std::string(!check.manifold() ? "not a manifold" : "not consistently oriented") + why);
+  auto edge_name = [](const std::array<uint32_t, 2>& e) {
+    return "(" + std::to_string(e[0]) + ", " + std::to_string(e[1]) + ")";
+  };
+  if (check.non_manifold_edges)
+    throw InputError("cannot repair safely: " + std::to_string(check.non_manifold_edges) +
+                     " non-manifold edge(s), e.g. edge " + edge_name(check.first_non_manifold_edge) +
+                     " has three or more faces");
+  if (check.inconsistent_edges)
+    throw InputError("cannot repair safely: the faces are not consistently oriented (" +
+                     std::to_string(check.inconsistent_edges) + " edge(s), e.g. the two faces of edge " +
+                     edge_name(check.first_inconsistent_edge) + " traverse it the same way)");
+
+  // Pinched vertices (several fans of faces meeting at one vertex, every edge manifold): each fan after the first gets
+  // its own copy of the vertex. The surface is unchanged; its topology becomes a manifold's.
+  if (check.non_manifold_vertices) r.pinched_vertices_split = split_pinched_vertices(m);
+
+  // Zero-area slivers: removing one would open a hole that a fan would refill with zero-area triangles, so flip.
+  if (check.zero_area_faces) {
+    const double eps2 = 2e-14 * check.diagonal * check.diagonal;  // as validate_mesh()
+    r.zero_area_flipped = flip_zero_area_faces(m, eps2);
+    const MeshReport after = validate_mesh(m);
+    if (after.zero_area_faces)
+      r.notes.push_back(std::to_string(after.zero_area_faces) +
+                        " zero-area face(s) kept: no safe flip removes them (coincident vertices or a boundary)");
   }
 
-  // Boundary loops, followed in face direction; the fan uses the reversed boundary edges.
-  std::map<uint32_t, uint32_t> next;  // boundary edge a -> b (face direction), one per vertex on a manifold
-  {
-    std::map<std::pair<uint32_t, uint32_t>, int> directed;
-    for (const Tri& t : m.triangles)
-      for (int k = 0; k < 3; ++k) ++directed[{t[k], t[(k + 1) % 3]}];
-    for (const auto& [e, c] : directed)
-      if (!directed.count({e.second, e.first})) next[e.first] = e.second;
+  // Boundary edges in face direction: half-edges whose reverse no face has. On a manifold, oriented mesh each
+  // boundary vertex starts exactly one of them.
+  struct HalfEdge {
+    uint32_t from, to;
+  };
+  std::vector<HalfEdge> he;
+  he.reserve(3 * m.triangles.size());
+  for (const Tri& t : m.triangles)
+    for (int k = 0; k < 3; ++k) he.push_back({t[k], t[(k + 1) % 3]});
+  std::vector<uint32_t> order(he.size());
+  std::iota(order.begin(), order.end(), 0u);
+  auto key = [&](uint32_t i) {
+    return std::make_pair(std::min(he[i].from, he[i].to), std::max(he[i].from, he[i].to));
+  };
+  std::sort(order.begin(), order.end(), [&](uint32_t x, uint32_t y) { return key(x) < key(y); });
+  std::vector<uint32_t> next(nv, UINT32_MAX);
+  size_t boundary_edges = 0;
+  for (size_t i = 0; i < order.size();) {
+    size_t j = i + 1;
+    while (j < order.size() && key(order[j]) == key(order[i])) ++j;
+    if (j - i == 1) {
+      next[he[order[i]].from] = he[order[i]].to;
+      ++boundary_edges;
+    }
+    i = j;
   }
-  while (!next.empty()) {
+
+  // Close each loop with a fan around its centroid; the fan traverses the loop's edges backwards.
+  for (uint32_t start = 0; start < nv && boundary_edges; ++start) {
+    if (next[start] == UINT32_MAX) continue;
     std::vector<uint32_t> loop;
-    uint32_t v = next.begin()->first;
-    while (next.count(v)) {
+    for (uint32_t v = start; next[v] != UINT32_MAX;) {
       loop.push_back(v);
       const uint32_t w = next[v];
-      next.erase(v);
+      next[v] = UINT32_MAX;
       v = w;
     }
-    if (loop.size() < 3) {
-      r.notes.push_back("a boundary loop of " + std::to_string(loop.size()) + " edges was left open");
-      continue;
-    }
+    boundary_edges -= loop.size();
     Vec3 c{0, 0, 0};
     for (uint32_t u : loop) c += m.positions[u];
     m.positions.push_back(c * (1.0 / static_cast<double>(loop.size())));
@@ -85,21 +264,21 @@ Mesh repair_mesh(const Mesh& in, RepairReport* report) {
     ++r.holes_filled;
     r.fill_triangles += loop.size();
   }
-  // Unreferenced vertices.
+
+  // Vertices no face uses any more (or never did).
   std::vector<uint32_t> id(m.positions.size(), UINT32_MAX);
-  std::vector<Vec3> pos;
   for (const Tri& t : m.triangles)
-    for (uint32_t v : t)
-      if (id[v] == UINT32_MAX) {
-        id[v] = 0;
-      }
-  for (uint32_t v = 0; v < m.positions.size(); ++v)
-    if (id[v] != UINT32_MAX) {
-      id[v] = static_cast<uint32_t>(pos.size());
-      pos.push_back(m.positions[v]);
-    } else {
+    for (uint32_t v : t) id[v] = 0;
+  std::vector<Vec3> pos;
+  pos.reserve(m.positions.size());
+  for (uint32_t v = 0; v < m.positions.size(); ++v) {
+    if (id[v] == UINT32_MAX) {
       ++r.unreferenced_removed;
+      continue;
     }
+    id[v] = static_cast<uint32_t>(pos.size());
+    pos.push_back(m.positions[v]);
+  }
   for (Tri& t : m.triangles)
     for (uint32_t& v : t) v = id[v];
   m.positions = std::move(pos);

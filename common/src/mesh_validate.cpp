@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <numeric>
+#include <stdexcept>
+#include <string>
 
 #include "prm/vec3.h"
 
@@ -46,8 +48,18 @@ MeshReport validate_mesh(const Mesh& m) {
   const size_t nv = m.positions.size(), nf = m.triangles.size();
   r.vertices = nv;
   r.faces = nf;
-  auto example = [&](const std::string& s) {
-    if (r.examples.size() < 8) r.examples.push_back(s);
+  for (const Tri& t : m.triangles)
+    for (uint32_t v : t)
+      if (v >= nv) throw std::invalid_argument("validate_mesh: a triangle uses vertex " + std::to_string(v) +
+                                               " of " + std::to_string(nv));
+  // The first few offenders of each kind, for messages; the text is only built while there is room for it.
+  enum Kind { kRepeated, kZeroArea, kDuplicate, kInconsistent, kNonManifoldEdge, kNonManifoldVertex, kKinds };
+  constexpr int kPerKind = 3;
+  int shown[kKinds] = {0};
+  auto want_example = [&](Kind k) { return shown[k] < kPerKind; };
+  auto example = [&](Kind k, std::string s) {
+    ++shown[k];
+    r.examples.push_back(std::move(s));
   };
   // Bounding box.
   if (nv) {
@@ -70,10 +82,10 @@ MeshReport validate_mesh(const Mesh& m) {
     for (uint32_t v : t) referenced[v] = 1;
     if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) {
       ++r.repeated_index_faces;
-      example("face " + std::to_string(f) + " uses vertex " + std::to_string(t[0] == t[1] || t[0] == t[2] ? t[0] : t[1]) + " twice");
+      if (want_example(kRepeated)) example(kRepeated, "face " + std::to_string(f) + " uses vertex " + std::to_string(t[0] == t[1] || t[0] == t[2] ? t[0] : t[1]) + " twice");
     } else if (norm(triangle_normal_area2(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]])) <= 2 * area_eps) {
       ++r.zero_area_faces;
-      example("face " + std::to_string(f) + " has zero area");
+      if (want_example(kZeroArea)) example(kZeroArea, "face " + std::to_string(f) + " has zero area");
     }
     std::array<uint32_t, 3> s = t;
     std::sort(s.begin(), s.end());
@@ -84,7 +96,7 @@ MeshReport validate_mesh(const Mesh& m) {
     if (sorted_faces[i][0] == sorted_faces[i - 1][0] && sorted_faces[i][1] == sorted_faces[i - 1][1] &&
         sorted_faces[i][2] == sorted_faces[i - 1][2]) {
       ++r.duplicate_faces;
-      example("face " + std::to_string(sorted_faces[i][3]) + " repeats face " + std::to_string(sorted_faces[i - 1][3]));
+      if (want_example(kDuplicate)) example(kDuplicate, "face " + std::to_string(sorted_faces[i][3]) + " repeats face " + std::to_string(sorted_faces[i - 1][3]));
     }
   for (uint8_t u : referenced) r.unreferenced_vertices += !u;
 
@@ -123,14 +135,16 @@ MeshReport validate_mesh(const Mesh& m) {
       boundary_to.push_back(t[(he[i].corner + 1) % 3]);
     } else if (n == 2) {
       if (he[i].forward == he[i + 1].forward) {
+        if (!r.inconsistent_edges) r.first_inconsistent_edge = {he[i].lo, he[i].hi};
         ++r.inconsistent_edges;
-        example("faces " + std::to_string(he[i].face) + " and " + std::to_string(he[i + 1].face) +
+        if (want_example(kInconsistent)) example(kInconsistent, "faces " + std::to_string(he[i].face) + " and " + std::to_string(he[i + 1].face) +
                 " traverse edge (" + std::to_string(he[i].lo) + ", " + std::to_string(he[i].hi) + ") the same way");
       }
       for (uint32_t v : {he[i].lo, he[i].hi}) corners.unite(corner_of(he[i].face, v), corner_of(he[i + 1].face, v));
     } else {
+      if (!r.non_manifold_edges) r.first_non_manifold_edge = {he[i].lo, he[i].hi};
       ++r.non_manifold_edges;
-      example("edge (" + std::to_string(he[i].lo) + ", " + std::to_string(he[i].hi) + ") has " + std::to_string(n) + " faces");
+      if (want_example(kNonManifoldEdge)) example(kNonManifoldEdge, "edge (" + std::to_string(he[i].lo) + ", " + std::to_string(he[i].hi) + ") has " + std::to_string(n) + " faces");
     }
     i = j;
   }
@@ -149,8 +163,9 @@ MeshReport validate_mesh(const Mesh& m) {
     }
   for (uint32_t v = 0; v < nv; ++v)
     if (fan_count[v] > 1) {
+      if (!r.non_manifold_vertices) r.first_non_manifold_vertex = v;
       ++r.non_manifold_vertices;
-      example("vertex " + std::to_string(v) + " joins " + std::to_string(fan_count[v]) + " fans of faces (pinched)");
+      if (want_example(kNonManifoldVertex)) example(kNonManifoldVertex, "vertex " + std::to_string(v) + " joins " + std::to_string(fan_count[v]) + " fans of faces (pinched)");
     }
 
   // Boundary loops: follow boundary edges head to tail; a vertex with several outgoing boundary edges (pinched)

@@ -4,9 +4,11 @@
 
 #include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <cstdint>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include "mesh_io_internal.h"
 
@@ -16,6 +18,9 @@ class TextScanner {
  public:
   TextScanner(const char* begin, const char* end, std::string path, char comment = '\0')
       : p_(begin), end_(end), path_(std::move(path)), comment_(comment) {}
+
+  // Comments skipped from now on are appended here (without the comment character and one blank after it).
+  void collect_comments(std::vector<std::string>* out) { comments_ = out; }
 
   // Skips blanks, line breaks and comments (from the comment character to the end of the line).
   void skip_space() {
@@ -27,7 +32,14 @@ class TextScanner {
       } else if (c == ' ' || c == '\t' || c == '\r' || c == '\f' || c == '\v') {
         ++p_;
       } else if (comment_ && c == comment_) {
+        const char* s = ++p_;
         while (p_ < end_ && *p_ != '\n') ++p_;
+        if (comments_) {
+          const char* e = p_;
+          if (e > s && e[-1] == '\r') --e;
+          if (s < e && *s == ' ') ++s;
+          comments_->emplace_back(s, e);
+        }
       } else {
         break;
       }
@@ -55,7 +67,7 @@ class TextScanner {
   }
   std::string_view token(const char* what) {
     skip_space();
-    if (p_ >= end_) fail("unexpected end of file while reading " + std::string(what));
+    if (p_ >= end_) fail("unexpected end of file while reading " + std::string(what) + " (truncated file?)");
     const char* s = p_;
     while (p_ < end_ && !is_space(*p_)) ++p_;
     return {s, static_cast<size_t>(p_ - s)};
@@ -74,6 +86,13 @@ class TextScanner {
     if (!t.empty() && *b == '+') ++b;  // from_chars does not take a leading '+'
     const auto r = std::from_chars(b, t.data() + t.size(), v);
     // "nan" and "inf" parse; check_finite() rejects them with the vertex named.
+    if (r.ec == std::errc::result_out_of_range && r.ptr == t.data() + t.size()) {
+      // from_chars leaves v unset on overflow and on underflow: underflow is a zero, overflow an error.
+      const std::string s(t);
+      const double x = std::strtod(s.c_str(), nullptr);
+      if (std::isfinite(x)) return x;
+      fail("'" + std::string(t.substr(0, 40)) + "' does not fit a double (" + what + ")");
+    }
     if (r.ec != std::errc() || r.ptr != t.data() + t.size())
       fail("'" + std::string(t.substr(0, 40)) + "' is not a number (" + what + ")");
     return v;
@@ -83,6 +102,7 @@ class TextScanner {
     const char* b = t.data();
     if (!t.empty() && *b == '+') ++b;
     const auto r = std::from_chars(b, t.data() + t.size(), v);
+    if (r.ec == std::errc::result_out_of_range) fail("'" + std::string(t.substr(0, 40)) + "' is too large (" + what + ")");
     if (r.ec != std::errc() || r.ptr != t.data() + t.size())
       fail("'" + std::string(t.substr(0, 40)) + "' is not an integer (" + what + ")");
     return v;
@@ -101,6 +121,7 @@ class TextScanner {
   const char* end_;
   std::string path_;
   char comment_;
+  std::vector<std::string>* comments_ = nullptr;
   size_t line_ = 1;
 };
 

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
+#include "prm/error.h"
 #include "prm/mesh_io.h"
 #include "prm/mesh_repair.h"
 #include "prm/mesh_validate.h"
@@ -24,7 +25,12 @@ void add_repair_command(CLI::App& root) {
     ReadReport rr;
     const Mesh in = read_mesh(opt->input, {}, &rr);
     RepairReport rep;
-    const Mesh out = repair_mesh(in, &rep);
+    Mesh out;
+    try {
+      out = repair_mesh(in, &rep);
+    } catch (const InputError& e) {
+      throw InputError(opt->input + ": " + e.what());
+    }
     write_mesh(out, opt->output);
     const MeshReport after = validate_mesh(out);
     if (opt->json) {
@@ -33,6 +39,8 @@ void add_repair_command(CLI::App& root) {
                           {"unreferenced_dropped_on_read", rr.unreferenced_dropped},
                           {"repeated_index_removed", rep.repeated_index_removed},
                           {"duplicate_removed", rep.duplicate_removed},
+                          {"pinched_vertices_split", rep.pinched_vertices_split},
+                          {"zero_area_flipped", rep.zero_area_flipped},
                           {"holes_filled", rep.holes_filled},
                           {"fill_triangles", rep.fill_triangles},
                           {"notes", rep.notes},
@@ -41,18 +49,22 @@ void add_repair_command(CLI::App& root) {
                             {"faces", after.faces},
                             {"closed", after.closed()},
                             {"manifold", after.manifold()},
-                            {"genus", after.genus_sum()}}}};
+                            {"oriented", after.oriented()},
+                            {"genus", after.genus_sum() < 0 ? nlohmann::json(nullptr) : nlohmann::json(after.genus_sum())}}}};
       std::printf("%s\n", j.dump().c_str());
       return;
     }
     std::printf("%s -> %s\n", opt->input.c_str(), opt->output.c_str());
     if (rr.unreferenced_dropped) std::printf("  %zu unreferenced vertices dropped on reading\n", rr.unreferenced_dropped);
-    std::printf("  removed %zu faces with a repeated vertex and %zu duplicate faces\n", rep.repeated_index_removed,
-                rep.duplicate_removed);
+    std::printf("  removed %zu faces with a repeated vertex and %zu duplicate faces; flipped away %zu zero-area faces\n",
+                rep.repeated_index_removed, rep.duplicate_removed, rep.zero_area_flipped);
+    if (rep.pinched_vertices_split) std::printf("  split %zu pinched vertices\n", rep.pinched_vertices_split);
     std::printf("  closed %zu hole(s) with %zu triangles\n", rep.holes_filled, rep.fill_triangles);
     for (const std::string& n : rep.notes) std::printf("  note: %s\n", n.c_str());
-    std::printf("  result: %zu vertices, %zu faces, %s, %s, genus %d\n", after.vertices, after.faces,
-                after.closed() ? "closed" : "open", after.manifold() ? "manifold" : "not manifold", after.genus_sum());
+    std::printf("  result: %zu vertices, %zu faces, %s, %s", after.vertices, after.faces,
+                after.closed() ? "closed" : "open", after.manifold() ? "manifold" : "not manifold");
+    if (after.genus_sum() >= 0) std::printf(", genus %d", after.genus_sum());
+    std::printf("\n");
   });
 }
 

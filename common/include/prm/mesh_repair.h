@@ -12,15 +12,20 @@ namespace prm {
 struct RepairReport {
   size_t repeated_index_removed = 0;  // faces that used a vertex twice
   size_t duplicate_removed = 0;       // faces repeating an earlier face's vertices
+  size_t pinched_vertices_split = 0;  // copies made of pinched vertices, one per extra fan of faces
+  size_t zero_area_flipped = 0;       // zero-area slivers removed by flipping their longest edge
   size_t holes_filled = 0;            // boundary loops closed by a fan around the loop's centroid (paper §4)
   size_t fill_triangles = 0;
   size_t unreferenced_removed = 0;
   std::vector<std::string> notes;
 };
 
-// Removes repeated-index and duplicate faces, then closes every boundary loop with a triangle fan around its
-// centroid. Throws prm::InputError (naming the edge or vertex) for non-manifold or inconsistently oriented input,
-// which cannot be repaired safely. Properties are dropped (the face set changes).
+// Removes repeated-index and duplicate faces, splits pinched vertices (one copy per extra fan of faces), flips away
+// zero-area slivers where that is safe (the others are kept and noted), closes every boundary loop with a triangle fan
+// around its centroid (paper §4) and drops unreferenced vertices. The result is closed, manifold and consistently
+// oriented. Throws prm::InputError naming the first offending edge for input that cannot be repaired without guessing:
+// an edge with three or more faces, or faces that are not consistently oriented (after the face removals).
+// Properties are dropped (the face set changes); comments are kept.
 Mesh repair_mesh(const Mesh& mesh, RepairReport* report = nullptr);
 
 }  // namespace prm

@@ -1,7 +1,9 @@
 // What a mesh is made of, and what is wrong with it: `prm info`.
 #pragma once
 
+#include <array>
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -31,8 +33,11 @@ struct MeshReport {
   std::vector<ComponentReport> per_component;  // sorted by decreasing face count
   Vec3 bbox_min{0, 0, 0}, bbox_max{0, 0, 0};
   double diagonal = 0;
-  // First offenders, for messages ("edge (12, 40) has 3 faces").
+  // The first offenders of each kind (a few per kind), for messages ("edge (12, 40) has 3 faces").
   std::vector<std::string> examples;
+  // The first offender of each topological kind (vertex indices); meaningful when its count is non-zero.
+  std::array<uint32_t, 2> first_non_manifold_edge{}, first_inconsistent_edge{};
+  uint32_t first_non_manifold_vertex = 0;
 
   bool oriented() const { return inconsistent_edges == 0; }
   bool manifold() const { return non_manifold_edges == 0 && non_manifold_vertices == 0; }
@@ -41,6 +46,8 @@ struct MeshReport {
   int genus_sum() const;  // sum over components (-1 when a component has no genus)
 };
 
+// Linear-logarithmic (sort-based edge table, union-find). Throws std::invalid_argument if a triangle uses a vertex
+// index out of range (read_mesh() never returns such a mesh).
 MeshReport validate_mesh(const Mesh& mesh);
 
 }  // namespace prm
