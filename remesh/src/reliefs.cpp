@@ -107,6 +107,8 @@ std::vector<Piece> envelope(const Values& a, const Values& b) {
 // side stays a vertex (no T-junction with the neighbouring face).
 void triangulate_convex(const std::vector<uint32_t>& ids, const std::vector<std::array<double, 2>>& uv,
                         std::vector<Tri>& out) {
+  // Areas are in the face's barycentric plane (O(1)); below this, three points are collinear up to rounding.
+  constexpr double kMinUvArea = 1e-9;
   std::vector<size_t> ring(ids.size());
   std::iota(ring.begin(), ring.end(), 0);
   auto cross2 = [&](size_t a, size_t b, size_t c) {
@@ -114,7 +116,7 @@ void triangulate_convex(const std::vector<uint32_t>& ids, const std::vector<std:
   };
   while (ring.size() > 3) {
     size_t best = SIZE_MAX;
-    double best_area = 0;
+    double best_area = kMinUvArea;
     const size_t n = ring.size();
     for (size_t i = 0; i < n; ++i) {
       const double area = cross2(ring[(i + n - 1) % n], ring[i], ring[(i + 1) % n]);
@@ -125,7 +127,7 @@ void triangulate_convex(const std::vector<uint32_t>& ids, const std::vector<std:
         if (j == i) continue;
         const size_t pj = (j + n - 1) % n == i ? (j + n - 2) % n : (j + n - 1) % n;
         const size_t nj = (j + 1) % n == i ? (j + 2) % n : (j + 1) % n;
-        rest_has_area = cross2(ring[pj], ring[j], ring[nj]) > 0;
+        rest_has_area = cross2(ring[pj], ring[j], ring[nj]) > kMinUvArea;
       }
       if (!rest_has_area) continue;
       best_area = area;
@@ -136,7 +138,8 @@ void triangulate_convex(const std::vector<uint32_t>& ids, const std::vector<std:
     out.push_back({ids[a], ids[b], ids[c]});
     ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(best));
   }
-  if (ring.size() == 3 && cross2(ring[0], ring[1], ring[2]) > 0) out.push_back({ids[ring[0]], ids[ring[1]], ids[ring[2]]});
+  if (ring.size() == 3 && cross2(ring[0], ring[1], ring[2]) > kMinUvArea)
+    out.push_back({ids[ring[0]], ids[ring[1]], ids[ring[2]]});
 }
 
 }  // namespace

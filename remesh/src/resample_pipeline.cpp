@@ -10,6 +10,7 @@
 #include <stdexcept>
 
 #include "loop_fill.h"
+#include "prm/aabb_tree.h"
 #include "prm/error.h"
 #include "prm/progress.h"
 #include "prm/remesh/resample.h"
@@ -121,7 +122,8 @@ PrmMesh resample_and_merge(const LayoutInput& layout, const ResampleOptions& opt
   SeamOptions so;
   so.max_normal_angle_deg = options.max_normal_angle_deg;
   so.grid_length = static_cast<double>(prm.lattice.A) * prm.frame.step;
-  const SeamStats ss = optimize_seams(merged, normals, so);
+  const AabbTree tree(input);
+  const SeamStats ss = optimize_seams(merged, normals, tree, so);
   st.loops_broken = ss.loops_broken;
   st.seam_collapses = ss.boundary_collapses;
   st.area_flips = ss.area_flips;

@@ -18,8 +18,8 @@ using FH = OMesh::FaceHandle;
 
 class SeamOptimizer {
  public:
-  SeamOptimizer(MergedMesh& m, const std::vector<Vec3>& normals, const SeamOptions& o)
-      : m_(m), normals_(normals), cos_max_(std::cos(o.max_normal_angle_deg * M_PI / 180.0)) {
+  SeamOptimizer(MergedMesh& m, const std::vector<Vec3>& normals, const AabbTree& tree, const SeamOptions& o)
+      : m_(m), normals_(normals), tree_(tree), cos_max_(std::cos(o.max_normal_angle_deg * M_PI / 180.0)) {
     // Twice the smallest area a triangle may have: a millionth of a grid triangle's size, squared.
     min_norm_ = 1e-12 * o.grid_length * o.grid_length;
     for (const MergedVertex& v : m.vertices) mesh_.add_vertex(OMesh::Point(v.position[0], v.position[1], v.position[2]));
@@ -47,16 +47,22 @@ class SeamOptimizer {
  private:
   const MergedVertex& mv(VH v) const { return m_.vertices[static_cast<size_t>(v.idx())]; }
   Vec3 pos(VH v) const { return mv(v).position; }
-  // Not zero-area, and not flipped: within the allowed angle of the input's normal at one of its corners (where
-  // the input folds, as a centroid fan over a non-planar hole does, the corners' input normals disagree).
+  // Not zero-area, and not flipped: within the allowed angle of the normal of the input face nearest to its
+  // centroid (issue 4's definition; where the input folds, as a centroid fan over a non-planar hole does, the
+  // input faces at its corners may face both ways, and only the nearest one says which way is out).
   bool triangle_ok(VH a, VH b, VH c, const Vec3& pa, const Vec3& pb, const Vec3& pc) const {
     const Vec3 n = cross(pb - pa, pc - pa);
     const double n2 = norm2(n);
     if (n2 <= min_norm_ * min_norm_) return false;
     const double limit = cos_max_ * std::sqrt(n2);
-    for (VH v : {a, b, c})
-      if (dot(n, normals_[static_cast<size_t>(mv(v).source_face)]) > limit) return true;
-    return false;
+    // The corners' input faces as a hint: the nearest one bounds the search.
+    const Vec3 centroid = (pa + pb + pc) * (1.0 / 3.0);
+    AabbTree::Hit hit;
+    tree_.closest(centroid, hit);
+    (void)a;
+    (void)b;
+    (void)c;
+    return hit.found() && dot(n, normals_[hit.face]) > limit;
   }
   bool face_ok(FH f) const {
     auto it = mesh_.cfv_iter(f);
@@ -337,6 +343,7 @@ class SeamOptimizer {
 
   MergedMesh& m_;
   const std::vector<Vec3>& normals_;
+  const AabbTree& tree_;
   double cos_max_;
   double min_norm_;
   OMesh mesh_;
@@ -344,8 +351,9 @@ class SeamOptimizer {
 
 }  // namespace
 
-SeamStats optimize_seams(MergedMesh& mesh, const std::vector<Vec3>& input_normals, const SeamOptions& options) {
-  return SeamOptimizer(mesh, input_normals, options).run();
+SeamStats optimize_seams(MergedMesh& mesh, const std::vector<Vec3>& input_normals, const AabbTree& input_tree,
+                         const SeamOptions& options) {
+  return SeamOptimizer(mesh, input_normals, input_tree, options).run();
 }
 
 }  // namespace prm::remesh

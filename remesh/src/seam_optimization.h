@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "loop_fill.h"
+#include "prm/aabb_tree.h"
 
 namespace prm::remesh {
 
@@ -25,8 +26,9 @@ struct SeamStats {
   size_t non_lattice_vertices = 0;
 };
 
-// input_normals: unit normal of every input face (MergedVertex::source_face indexes it).
-// On return, mesh has no deleted elements: vertices and faces are compacted.
-SeamStats optimize_seams(MergedMesh& mesh, const std::vector<Vec3>& input_normals, const SeamOptions& options);
+// input_normals: unit normal of every input face (MergedVertex::source_face indexes it); input_tree: the input's
+// faces, for the normal of the input nearest to a triangle. On return, mesh has no deleted elements.
+SeamStats optimize_seams(MergedMesh& mesh, const std::vector<Vec3>& input_normals, const AabbTree& input_tree,
+                         const SeamOptions& options);
 
 }  // namespace prm::remesh

@@ -4,6 +4,7 @@
 #include <tuple>
 
 #include "prm/remesh/lattice.h"
+#include "prm/remesh/reliefs.h"
 #include "prm/remesh/resample.h"
 #include "prm/vec3.h"
 #include "test_meshes.h"
@@ -11,57 +12,18 @@
 namespace prm::remesh {
 namespace {
 
-// The naive layout: each face to the axis closest to its normal; reliefs are its connected components.
-struct NaiveLayout {
-  std::vector<int32_t> face_relief;
-  std::vector<int> relief_axis;
-};
-
-NaiveLayout naive_layout(const Mesh& m) {
-  const size_t nf = m.triangles.size();
-  std::vector<int> axis(nf);
-  for (size_t f = 0; f < nf; ++f) {
-    const Tri& t = m.triangles[f];
-    const Vec3 n = triangle_normal_area2(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]);
-    int best = 0;
-    for (int a = 1; a < 6; ++a)
-      if (dot(n, axis_vector(a)) > dot(n, axis_vector(best))) best = a;
-    axis[f] = best;
-  }
-  std::map<std::pair<uint32_t, uint32_t>, int32_t> edge_face;
-  for (size_t f = 0; f < nf; ++f)
-    for (int k = 0; k < 3; ++k) edge_face[{m.triangles[f][k], m.triangles[f][(k + 1) % 3]}] = static_cast<int32_t>(f);
-  NaiveLayout out;
-  out.face_relief.assign(nf, -1);
-  for (size_t s = 0; s < nf; ++s) {
-    if (out.face_relief[s] >= 0) continue;
-    const int32_t id = static_cast<int32_t>(out.relief_axis.size());
-    out.relief_axis.push_back(axis[s]);
-    std::vector<size_t> stack{s};
-    out.face_relief[s] = id;
-    while (!stack.empty()) {
-      const size_t f = stack.back();
-      stack.pop_back();
-      for (int k = 0; k < 3; ++k) {
-        auto it = edge_face.find({m.triangles[f][(k + 1) % 3], m.triangles[f][k]});
-        if (it == edge_face.end()) continue;
-        const size_t g = static_cast<size_t>(it->second);
-        if (out.face_relief[g] < 0 && axis[g] == axis[f]) {
-          out.face_relief[g] = id;
-          stack.push_back(g);
-        }
-      }
-    }
-  }
-  return out;
-}
-
+// Resampling on the naive layout (each face to its closest axis): many small reliefs, a hard case for merging.
 PrmMesh run(const Mesh& m, int64_t grid) {
-  const NaiveLayout layout = naive_layout(m);
+  ReliefOptions ro;
+  ro.naive = true;
+  const ReliefLayout layout = build_reliefs(m, ro);
+  std::vector<int> axes;
+  for (const Relief& r : layout.reliefs) axes.push_back(r.axis);
   LayoutInput in;
-  in.refined = &m;
+  in.refined = &layout.mesh;
   in.face_relief = &layout.face_relief;
-  in.relief_axis = &layout.relief_axis;
+  in.relief_axis = &axes;
+  in.input = &m;
   ResampleOptions o;
   o.frame = QuantFrame::of_mesh(m, 12);
   o.grid = grid;
