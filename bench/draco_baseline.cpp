@@ -6,9 +6,10 @@
 //
 // Another codec joins the table as one more Codec in `codecs` below (see draco_codec.h for the pattern).
 //
-//   prm_bench_draco_baseline [--csv] [--meshes=SUB[,SUB...]] [--levels=7,10] [--rounds=7] [--min-round=0.1]
-//                            [--samples=N] [--seed=S]
+//   prm_bench_draco_baseline [--csv | --csv=FILE] [--meshes=SUB[,SUB...]] [--levels=7,10] [--rounds=7]
+//                            [--min-round=0.1] [--samples=N] [--seed=S]
 //     --csv        CSV instead of the Markdown table on stdout (more columns: absolute RMS, Hausdorff, times)
+//     --csv=FILE   the Markdown table on stdout and the CSV in FILE
 //     --meshes     only meshes whose name contains one of the substrings
 //     --samples    Metro samples per surface for the error (default: ten per face, Metro's default)
 #include <algorithm>
@@ -65,8 +66,9 @@ std::vector<Entry> mesh_list() {
 
 int usage(const char* argv0) {
   std::fprintf(stderr,
-               "usage: %s [--csv] [--meshes=SUB[,SUB...]] [--levels=7,10] [--rounds=N] [--min-round=SECONDS]\n"
-               "          [--samples=N] [--seed=S]\n",
+               "usage: %s [--csv | --csv=FILE] [--meshes=SUB[,SUB...]] [--levels=7,10] [--rounds=N]\n"
+               "          [--min-round=SECONDS]"
+               " [--samples=N] [--seed=S]\n",
                argv0);
   return 1;
 }
@@ -75,6 +77,7 @@ int usage(const char* argv0) {
 
 int main(int argc, char** argv) {
   bool csv = false;
+  std::string csv_file;
   std::vector<std::string> filters;
   std::vector<int> levels = {7, 10};
   prm::bench::TableOptions options;
@@ -84,8 +87,13 @@ int main(int argc, char** argv) {
       const std::string k = std::string(key) + "=";
       return a.compare(0, k.size(), k) == 0 ? argv[i] + k.size() : nullptr;
     };
-    if (a == "--csv") {
+    if (a == "--help" || a == "-h") {
+      usage(argv[0]);
+      return 0;
+    } else if (a == "--csv") {
       csv = true;
+    } else if (const char* v = value("--csv")) {
+      csv_file = v;
     } else if (const char* v = value("--meshes")) {
       filters = split(v, ',');
     } else if (const char* v = value("--levels")) {
@@ -131,5 +139,14 @@ int main(int argc, char** argv) {
     prm::bench::print_csv(stdout, rows, codecs);
   else
     prm::bench::print_markdown(stdout, rows, codecs);
+  if (!csv_file.empty()) {
+    std::FILE* f = std::fopen(csv_file.c_str(), "w");
+    if (!f) {
+      std::fprintf(stderr, "draco_baseline: cannot write %s\n", csv_file.c_str());
+      return 4;
+    }
+    prm::bench::print_csv(f, rows, codecs);
+    std::fclose(f);
+  }
   return 0;
 }

@@ -108,10 +108,9 @@ void add_compare_command(CLI::App& root) {
       "distance from A's samples to B, from B's samples to A, and the larger of the two, absolute and as\n"
       "fractions of A's bounding-box diagonal.");
   auto o = std::make_shared<CompareOptions>();
-  cmd->add_option("A", o->a, "First mesh (its bounding-box diagonal is the unit of the relative figures)")
-      ->required()
-      ->check(CLI::ExistingFile);
-  cmd->add_option("B", o->b, "Second mesh")->required()->check(CLI::ExistingFile);
+  // (Missing files are reported by the reader, as I/O errors: exit code 4.)
+  cmd->add_option("A", o->a, "First mesh (its bounding-box diagonal is the unit of the relative figures)")->required();
+  cmd->add_option("B", o->b, "Second mesh")->required();
   cmd->add_flag("--json", o->json, "Print the report as one JSON object");
   cmd->add_option("--samples", o->samples,
                   "Samples per surface (0: ten per face of the larger mesh, Metro's default). With --sampling\n"
@@ -124,7 +123,8 @@ void add_compare_command(CLI::App& root) {
                   "Hausdorff Distance filter)")
       ->transform(CLI::CheckedTransformer(
           std::map<std::string, SampleBudget>{{"metro", SampleBudget::Metro}, {"meshlab", SampleBudget::PerKind}},
-          CLI::ignore_case));
+          CLI::ignore_case))
+      ->option_text("metro|meshlab (default: metro)");
   cmd->add_flag("--no-vertex-samples", o->no_vertices, "Do not sample the vertices");
   cmd->add_flag("--no-edge-samples", o->no_edges, "Do not sample the edges");
   cmd->add_flag("--no-face-samples", o->no_faces, "Do not sample the faces");
