@@ -20,7 +20,8 @@ struct MergedVertex {
   bool lattice = false;     // a grid vertex of relief `relief`
   int32_t relief = -1;      // the relief the vertex came from; -1 for refined vertices shared by several reliefs
   int64_t i = 0, j = 0;     // lattice coordinates (lattice vertices)
-  int32_t source_face = -1; // input face the vertex lies on
+  int32_t source_face = -1; // input face the vertex lies on (or lay on, before a repair moved it)
+  bool on_input = true;     // the position lies on source_face
 };
 
 struct MergedMesh {

@@ -55,13 +55,20 @@ class SeamOptimizer {
     const double n2 = norm2(n);
     if (n2 <= min_norm_ * min_norm_) return false;
     const double limit = cos_max_ * std::sqrt(n2);
-    // The corners' input faces as a hint: the nearest one bounds the search.
+    // A corner that lies on the input (on its source face) bounds the search: the nearest such corner is the hint.
     const Vec3 centroid = (pa + pb + pc) * (1.0 / 3.0);
     AabbTree::Hit hit;
+    for (VH v : {a, b, c}) {
+      const Vec3& p = v == a ? pa : v == b ? pb : pc;
+      if (!mv(v).on_input || p != mv(v).position) continue;  // a tentative or repaired position
+      const double d2 = norm2(p - centroid);
+      if (d2 < hit.distance2 && mv(v).source_face >= 0) {
+        hit.distance2 = d2 * (1 + 1e-12);
+        hit.point = p;
+        hit.face = static_cast<uint32_t>(mv(v).source_face);
+      }
+    }
     tree_.closest(centroid, hit);
-    (void)a;
-    (void)b;
-    (void)c;
     return hit.found() && dot(n, normals_[hit.face]) > limit;
   }
   bool face_ok(FH f) const {
@@ -277,8 +284,21 @@ class SeamOptimizer {
       if (n == 0) continue;
       centroid = centroid * (1.0 / n);
       const Vec3 old = pos(v);
+      // Candidates: towards the centroid of the neighbours, and the input points nearest to those places.
+      std::vector<Vec3> candidates;
+      std::vector<int32_t> on_face;  // the input face a candidate lies on, or -1
       for (double t : {1.0, 0.5, 0.25, 0.75, 0.125}) {
-        const Vec3 p = lerp(old, centroid, t);
+        candidates.push_back(lerp(old, centroid, t));
+        on_face.push_back(-1);
+      }
+      for (size_t i = 0, k = candidates.size(); i < k; ++i) {
+        const auto hit = tree_.closest(candidates[i]);
+        if (!hit.found()) continue;
+        candidates.push_back(hit.point);
+        on_face.push_back(static_cast<int32_t>(hit.face));
+      }
+      for (size_t ci = 0; ci < candidates.size(); ++ci) {
+        const Vec3& p = candidates[ci];
         bool ok = true;
         for (auto oh : mesh_.voh_range(v)) {
           if (mesh_.is_boundary(oh)) continue;
@@ -289,13 +309,115 @@ class SeamOptimizer {
           }
         }
         if (ok) {
-          m_.vertices[static_cast<size_t>(v.idx())].position = p;
-          m_.vertices[static_cast<size_t>(v.idx())].lattice = false;  // a moved grid vertex is no longer one
+          MergedVertex& x = m_.vertices[static_cast<size_t>(v.idx())];
+          x.position = p;
+          x.lattice = false;  // a moved grid vertex is no longer one
+          x.on_input = on_face[ci] >= 0;
+          if (x.on_input) x.source_face = on_face[ci];
           return true;
         }
       }
     }
     return false;
+  }
+
+  // Where the grid is too coarse for the surface (a thin part, a sharp tip), a bad triangle's edge is split at the
+  // input point nearest to its midpoint, when the four new triangles are all valid: a vertex that follows the
+  // surface where the grid cannot.
+  bool split_edge_on_surface(FH f) {
+    HH best;
+    double best_len = 0;
+    for (auto h : mesh_.fh_range(f)) {
+      if (mesh_.is_boundary(mesh_.opposite_halfedge_handle(h))) continue;
+      const double len = norm(pos(mesh_.to_vertex_handle(h)) - pos(mesh_.from_vertex_handle(h)));
+      const VH a = mesh_.from_vertex_handle(h), b = mesh_.to_vertex_handle(h);
+      const VH c = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h));
+      const VH d = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(mesh_.opposite_halfedge_handle(h)));
+      const auto hit = tree_.closest((pos(a) + pos(b)) * 0.5);
+      if (!hit.found()) continue;
+      // Faces (a, b, c) and (b, a, d) become (a, m, c), (m, b, c), (b, m, d), (m, a, d).
+      MergedVertex mvx;
+      mvx.position = hit.point;
+      mvx.source_face = static_cast<int32_t>(hit.face);
+      m_.vertices.push_back(mvx);
+      const VH m(static_cast<int>(m_.vertices.size() - 1));
+      const Vec3 pm = hit.point;
+      const bool ok = triangle_ok(a, m, c, pos(a), pm, pos(c)) && triangle_ok(m, b, c, pm, pos(b), pos(c)) &&
+                      triangle_ok(b, m, d, pos(b), pm, pos(d)) && triangle_ok(m, a, d, pm, pos(a), pos(d));
+      m_.vertices.pop_back();
+      if (ok && len > best_len) {
+        best_len = len;
+        best = h;
+      }
+    }
+    if (!best.is_valid()) return false;
+    const VH a = mesh_.from_vertex_handle(best), b = mesh_.to_vertex_handle(best);
+    const auto hit = tree_.closest((pos(a) + pos(b)) * 0.5);
+    MergedVertex mvx;
+    mvx.position = hit.point;
+    mvx.source_face = static_cast<int32_t>(hit.face);
+    m_.vertices.push_back(mvx);
+    const VH m = mesh_.add_vertex(OMesh::Point(hit.point[0], hit.point[1], hit.point[2]));
+    if (static_cast<size_t>(m.idx()) + 1 != m_.vertices.size()) throw std::logic_error("seam repair: vertex ids out of step");
+    mesh_.split(mesh_.edge_handle(best), m);
+    return true;
+  }
+
+  // A small bad triangle at a sharp spot: collapse all three corners into one of them, when every triangle left
+  // around them is valid (two collapses; the first alone may not be an improvement).
+  bool collapse_face(FH f) {
+    auto it = mesh_.cfv_iter(f);
+    const VH corner[3] = {*it, *++it, *++it};
+    for (int k = 0; k < 3; ++k) {
+      const VH y = corner[k];
+      bool ok = true;
+      int checked = 0;
+      for (int j = 0; j < 3 && ok; ++j) {
+        const VH x = corner[j];
+        if (x == y) continue;
+        for (auto oh : mesh_.voh_range(x)) {
+          if (mesh_.is_boundary(oh)) continue;
+          VH p = mesh_.to_vertex_handle(oh), q = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(oh));
+          int in = (p == corner[0] || p == corner[1] || p == corner[2]) + (q == corner[0] || q == corner[1] || q == corner[2]);
+          if (in > 0) continue;  // a triangle with two corners of f disappears
+          if (!triangle_ok(y, p, q, pos(y), pos(p), pos(q))) {
+            ok = false;
+            break;
+          }
+          ++checked;
+        }
+      }
+      if (!ok || checked == 0) continue;
+      const VH x1 = corner[(k + 1) % 3], x2 = corner[(k + 2) % 3];
+      HH h1 = mesh_.find_halfedge(x1, y);
+      if (!h1.is_valid() || !mesh_.is_collapse_ok(h1)) continue;
+      mesh_.collapse(h1);
+      const HH h2 = mesh_.find_halfedge(x2, y);
+      if (h2.is_valid() && mesh_.is_collapse_ok(h2)) mesh_.collapse(h2);
+      return true;
+    }
+    return false;
+  }
+
+  // A bad triangle whose edges cannot be split usefully: split the face at the input point nearest to its
+  // centroid, when the three new triangles are valid.
+  bool split_face_on_surface(FH f) {
+    auto it = mesh_.cfv_iter(f);
+    const VH a = *it, b = *++it, c = *++it;
+    const auto hit = tree_.closest((pos(a) + pos(b) + pos(c)) * (1.0 / 3.0));
+    if (!hit.found()) return false;
+    const Vec3 pm = hit.point;
+    if (!triangle_ok(a, b, a, pos(a), pos(b), pm) || !triangle_ok(b, c, b, pos(b), pos(c), pm) ||
+        !triangle_ok(c, a, c, pos(c), pos(a), pm))
+      return false;
+    MergedVertex mvx;
+    mvx.position = pm;
+    mvx.source_face = static_cast<int32_t>(hit.face);
+    m_.vertices.push_back(mvx);
+    const VH m = mesh_.add_vertex(OMesh::Point(pm[0], pm[1], pm[2]));
+    if (static_cast<size_t>(m.idx()) + 1 != m_.vertices.size()) throw std::logic_error("seam repair: vertex ids out of step");
+    mesh_.split(f, m);
+    return true;
   }
 
   size_t remove_bad_triangles() {
@@ -308,7 +430,7 @@ class SeamOptimizer {
       for (auto f : mesh_.faces()) {
         if (mesh_.status(f).deleted() || face_ok(f)) continue;
         ++bad;
-        if (repair_face(f) || relocate_vertex(f, allow_lattice)) ++fixed;
+        if (repair_face(f) || relocate_vertex(f, allow_lattice) || (allow_lattice && (collapse_face(f) || split_edge_on_surface(f) || split_face_on_surface(f)))) ++fixed;
       }
       repairs += fixed;
       if (bad == 0) break;
