@@ -377,10 +377,9 @@ Mesh read_mesh(const std::string& path, const ReadOptions& options, ReadReport* 
     case MeshFormat::Auto: break;
   }
   if (raw.num_polygons() == 0)
-    io::fail(path, "the file has no faces" +
-                       (raw.positions.empty() ? std::string()
-                                              : " (only " + std::to_string(raw.positions.size()) +
-                                                    " vertices: a point cloud is not a mesh)"));
+    io::fail(path, raw.positions.empty() ? std::string("the file has no vertices and no faces (not a mesh file?)")
+                                          : "the file has no faces (only " + std::to_string(raw.positions.size()) +
+                                                " vertices: a point cloud is not a mesh)");
   io::check_indices(raw, path);
   io::check_finite(raw, path);
   return io::finish_mesh(std::move(raw), options, weld_auto, r);

@@ -13,23 +13,28 @@
 namespace prm::io {
 namespace {
 
-// tinyobjloader turns what it cannot parse into zeros ("v nan 0 0", "v 1 2" and "v abc 0 0" all give 0) and wraps
-// indices that overflow an int, so every v and f line is checked here first and a bad one is refused with its line
-// named. Also collects the '#' comments.
-void check_obj_text(const std::vector<char>& data, const std::string& path, std::vector<std::string>& comments) {
+// tinyobjloader turns what it cannot parse into zeros ("v nan 0 0", "v 1 2" and "v abc 0 0" all give 0), wraps
+// indices that overflow an int, and parses numbers into floats (or, in its double build, not correctly rounded), so
+// every v and f line is checked here first and a bad one is refused with its line named. The positions are taken
+// from this pass (correctly rounded doubles: a written OBJ reads back exactly); tinyobjloader resolves the faces.
+// Also collects the '#' comments.
+void scan_obj_text(const std::vector<char>& data, const std::string& path, RawMesh& raw) {
   TextScanner in(data.data(), data.data() + data.size(), path, '#');
-  in.collect_comments(&comments);
+  in.collect_comments(&raw.comments);
   int64_t vertices = 0;
   while (!in.at_end()) {
     const std::string_view key = in.token("a keyword");
     if (key == "v") {
       int n = 0;
+      Vec3 p{0, 0, 0};
       while (!in.at_line_end()) {
         const double x = in.parse_double(in.token("a coordinate"), "a vertex coordinate");
         if (!std::isfinite(x)) in.fail("vertex " + std::to_string(vertices + 1) + " has a non-finite coordinate (NaN or inf)");
+        if (n < 3) p[static_cast<size_t>(n)] = x;
         ++n;
       }
       if (n < 3) in.fail("vertex " + std::to_string(vertices + 1) + " has " + std::to_string(n) + " coordinates (3 needed)");
+      raw.positions.push_back(p);
       ++vertices;
     } else if (key == "f") {
       int64_t corners = 0;
@@ -56,7 +61,7 @@ RawMesh read_obj(const std::string& path) {
   const std::vector<char> data = read_file(path);
   if (data.empty()) fail(path, "the file is empty");
   RawMesh raw;
-  check_obj_text(data, path, raw.comments);
+  scan_obj_text(data, path, raw);
   tinyobj::ObjReaderConfig config;
   config.triangulate = false;  // read_mesh() triangulates (ear clipping) and counts the polygons
   config.vertex_color = false;
@@ -67,11 +72,10 @@ RawMesh read_obj(const std::string& path) {
     while (!err.empty() && (err.back() == '\n' || err.back() == '\r')) err.pop_back();
     fail(path, "malformed OBJ: " + (err.empty() ? std::string("tinyobjloader failed") : err));
   }
-  const auto& attrib = reader.GetAttrib();
-  const size_t nv = attrib.vertices.size() / 3;
-  raw.positions.resize(nv);
-  for (size_t v = 0; v < nv; ++v)
-    for (size_t a = 0; a < 3; ++a) raw.positions[v][a] = attrib.vertices[3 * v + a];
+  const size_t nv = raw.positions.size();
+  if (reader.GetAttrib().vertices.size() != 3 * nv)
+    fail(path, "tinyobjloader found " + std::to_string(reader.GetAttrib().vertices.size() / 3) + " vertices, the " +
+                   "line scan " + std::to_string(nv) + " (a line form neither reads the same way)");
   raw.file_vertices = nv;
   std::vector<uint32_t> poly;
   for (const auto& shape : reader.GetShapes()) {

@@ -14,6 +14,7 @@ RawMesh read_off(const std::string& path) {
   TextScanner in(data.data(), data.data() + data.size(), path, '#');
   RawMesh raw;
   in.collect_comments(&raw.comments);
+  in.set_eof_hint("truncated, or the header's counts do not match the content");
   std::string_view head = in.token("the OFF keyword");
   // The keyword may carry prefixes (ST, C, N, 4, n) and may be followed by the counts on the same line.
   if (head.size() < 3 || head.substr(head.size() - 3) != "OFF") fail(path, "not an OFF file: it does not start with OFF");

@@ -67,6 +67,12 @@ const char* type_name(ScalarType t) {
   return "float";
 }
 
+std::string number_text(double v) {
+  std::string s;
+  append_number(s, v, false);
+  return s;
+}
+
 // Whether v is a value of type t (integers in range; any float, NaN included, for the float types).
 bool fits(ScalarType t, double v) {
   auto in = [&](double lo, double hi) { return v >= lo && v <= hi && v == std::floor(v); };
@@ -88,7 +94,10 @@ class BodyReader {
  public:
   BodyReader(const std::vector<char>& data, size_t offset, Encoding enc, const std::string& path)
       : data_(data), pos_(offset), enc_(enc), path_(path),
-        text_(data.data() + offset, data.data() + data.size(), path) {}
+        text_(data.data() + offset, data.data() + data.size(), path) {
+    text_.set_eof_hint("truncated, or the header's counts do not match the content");
+    text_.set_line(static_cast<size_t>(std::count(data.begin(), data.begin() + static_cast<std::ptrdiff_t>(offset), '\n')) + 1);
+  }
 
   double read(ScalarType t, const char* what) {
     if (enc_ == Encoding::Ascii) {
@@ -101,7 +110,9 @@ class BodyReader {
       return v;
     }
     const size_t n = type_size(t);
-    if (pos_ + n > data_.size()) fail(path_, std::string("file ends inside ") + what + " (truncated)");
+    if (pos_ + n > data_.size())
+      fail(path_, std::string("the file ends inside ") + what +
+                      " (truncated, or the header's counts do not match the content)");
     unsigned char b[8];
     std::memcpy(b, data_.data() + pos_, n);
     pos_ += n;
@@ -151,7 +162,7 @@ RawMesh read_ply(const std::string& path, bool keep_properties) {
     while (e < data.size() && data[e] != '\n') ++e;
     line.assign(data.data() + line_start, e - line_start);
     if (!line.empty() && line.back() == '\r') line.pop_back();
-    line_start = e + 1;
+    line_start = std::min(e + 1, data.size());  // a last line without a line break ends at the end
     if (line.size() > 4096) fail(path, "a header line is longer than 4096 characters (not a PLY header)");
   };
   std::string line;
@@ -277,7 +288,7 @@ RawMesh read_ply(const std::string& path, bool keep_properties) {
                 continue;
               }
               if (v < 0 || v >= 4294967295.0 || v != std::floor(v))
-                fail(path, e.name + " " + std::to_string(i) + " has vertex index " + std::to_string(v) +
+                fail(path, e.name + " " + std::to_string(i) + " has vertex index " + number_text(v) +
                                " (negative or not an integer)");
               poly.push_back(static_cast<uint32_t>(v));
             }

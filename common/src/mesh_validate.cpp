@@ -114,7 +114,7 @@ MeshReport validate_mesh(const Mesh& m) {
   });
   UnionFind faces(nf);
   UnionFind corners(3 * nf);  // corners of one vertex joined across manifold edges: fans
-  std::vector<uint32_t> boundary_from, boundary_to;  // boundary edges in face direction
+  std::vector<uint32_t> boundary_from, boundary_to, boundary_face;  // boundary edges in face direction
   std::vector<uint32_t> edge_component;              // one face per edge, for per-component edge counts
   auto corner_of = [&](uint32_t f, uint32_t v) {
     for (uint32_t k = 0; k < 3; ++k)
@@ -133,6 +133,7 @@ MeshReport validate_mesh(const Mesh& m) {
       const Tri& t = m.triangles[he[i].face];
       boundary_from.push_back(t[he[i].corner]);
       boundary_to.push_back(t[(he[i].corner + 1) % 3]);
+      boundary_face.push_back(he[i].face);
     } else if (n == 2) {
       if (he[i].forward == he[i + 1].forward) {
         if (!r.inconsistent_edges) r.first_inconsistent_edge = {he[i].lo, he[i].hi};
@@ -145,6 +146,10 @@ MeshReport validate_mesh(const Mesh& m) {
       if (!r.non_manifold_edges) r.first_non_manifold_edge = {he[i].lo, he[i].hi};
       ++r.non_manifold_edges;
       if (want_example(kNonManifoldEdge)) example(kNonManifoldEdge, "edge (" + std::to_string(he[i].lo) + ", " + std::to_string(he[i].hi) + ") has " + std::to_string(n) + " faces");
+      // Faces around a vertex that meet at an edge belong to one fan, even at a non-manifold edge: a vertex is only
+      // called non-manifold for a pinch (as MANIFEST.md counts them); the edge is reported on its own.
+      for (size_t k = i + 1; k < j; ++k)
+        for (uint32_t v : {he[i].lo, he[i].hi}) corners.unite(corner_of(he[i].face, v), corner_of(he[k].face, v));
     }
     i = j;
   }
@@ -169,8 +174,8 @@ MeshReport validate_mesh(const Mesh& m) {
     }
 
   // Boundary loops: follow boundary edges head to tail; a vertex with several outgoing boundary edges (pinched)
-  // still ends every loop, since each edge is used once. loop_start keeps a vertex of each loop.
-  std::vector<uint32_t> loop_start;
+  // still ends every loop, since each edge is used once. loop_face keeps a face of each loop (for its component).
+  std::vector<uint32_t> loop_face;
   {
     std::vector<uint32_t> order(boundary_from.size());
     std::iota(order.begin(), order.end(), 0u);
@@ -185,7 +190,7 @@ MeshReport validate_mesh(const Mesh& m) {
     };
     for (uint32_t e0 = 0; e0 < boundary_from.size(); ++e0) {
       if (used[e0]) continue;
-      loop_start.push_back(boundary_from[e0]);
+      loop_face.push_back(boundary_face[e0]);
       int64_t e = e0;
       while (e >= 0 && !used[static_cast<size_t>(e)]) {
         used[static_cast<size_t>(e)] = 1;
@@ -193,7 +198,7 @@ MeshReport validate_mesh(const Mesh& m) {
       }
     }
   }
-  r.boundary_loops = loop_start.size();
+  r.boundary_loops = loop_face.size();
 
   // Components.
   std::vector<int64_t> comp_index(nf, -1);
@@ -208,29 +213,45 @@ MeshReport validate_mesh(const Mesh& m) {
     comp_of_face[f] = static_cast<uint32_t>(comp_index[root]);
     ++comps[comp_of_face[f]].faces;
   }
-  std::vector<int64_t> vertex_comp(nv, -1);
-  for (uint32_t f = 0; f < nf; ++f)
-    for (uint32_t v : m.triangles[f])
-      if (vertex_comp[v] < 0) {
-        vertex_comp[v] = comp_of_face[f];
-        ++comps[comp_of_face[f]].vertices;
+  // A vertex may belong to several components (two surfaces touching at a point): count (component, vertex) pairs,
+  // and fans of faces per pair, so that each component is judged on its own.
+  {
+    struct CornerKey {
+      uint32_t comp, vertex, fan;
+      bool operator<(const CornerKey& o) const {
+        return comp != o.comp ? comp < o.comp : vertex != o.vertex ? vertex < o.vertex : fan < o.fan;
       }
+      bool operator==(const CornerKey& o) const { return comp == o.comp && vertex == o.vertex && fan == o.fan; }
+    };
+    std::vector<CornerKey> keys;
+    keys.reserve(3 * nf);
+    for (uint32_t f = 0; f < nf; ++f)
+      for (uint32_t k = 0; k < 3; ++k) keys.push_back({comp_of_face[f], m.triangles[f][k], corners.find(3 * f + k)});
+    std::sort(keys.begin(), keys.end());
+    keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+    for (size_t i = 0; i < keys.size();) {
+      size_t j = i + 1;
+      while (j < keys.size() && keys[j].comp == keys[i].comp && keys[j].vertex == keys[i].vertex) ++j;
+      ++comps[keys[i].comp].vertices;
+      if (j - i > 1) comps[keys[i].comp].manifold = false;  // a pinch inside the component
+      i = j;
+    }
+  }
   for (uint32_t f : edge_component) ++comps[comp_of_face[f]].edges;
-  for (uint32_t v : loop_start) ++comps[static_cast<size_t>(vertex_comp[v])].boundary_loops;
+  for (uint32_t f : loop_face) ++comps[comp_of_face[f]].boundary_loops;
   for (size_t i = 0; i < he.size();) {
     size_t j = i + 1;
     while (j < he.size() && he[j].lo == he[i].lo && he[j].hi == he[i].hi) ++j;
     if (j - i > 2 || (j - i == 2 && he[i].forward == he[i + 1].forward)) comps[comp_of_face[he[i].face]].manifold = false;
     i = j;
   }
-  for (uint32_t v = 0; v < nv; ++v)
-    if (fan_count[v] > 1) comps[static_cast<size_t>(vertex_comp[v])].manifold = false;
   for (ComponentReport& c : comps) {
     c.euler = static_cast<long>(c.vertices) - static_cast<long>(c.edges) + static_cast<long>(c.faces);
     const long twice = 2 - c.euler - static_cast<long>(c.boundary_loops);
     c.genus = c.manifold && twice >= 0 && twice % 2 == 0 ? static_cast<int>(twice / 2) : -1;
-    r.euler += c.euler;
   }
+  // The whole mesh's V - E + F over referenced vertices (a vertex shared by two components counts once).
+  r.euler = static_cast<long>(nv - r.unreferenced_vertices) - static_cast<long>(r.edges) + static_cast<long>(nf);
   std::sort(comps.begin(), comps.end(), [](const ComponentReport& a, const ComponentReport& b) { return a.faces > b.faces; });
   r.components = comps.size();
   r.per_component = std::move(comps);

@@ -21,6 +21,10 @@ class TextScanner {
 
   // Comments skipped from now on are appended here (without the comment character and one blank after it).
   void collect_comments(std::vector<std::string>* out) { comments_ = out; }
+  // The line number of the first byte (when the scanner starts after a header read elsewhere).
+  void set_line(size_t line) { line_ = line; }
+  // What an unexpected end of file probably means, for the message.
+  void set_eof_hint(std::string hint) { eof_hint_ = std::move(hint); }
 
   // Skips blanks, line breaks and comments (from the comment character to the end of the line).
   void skip_space() {
@@ -67,7 +71,7 @@ class TextScanner {
   }
   std::string_view token(const char* what) {
     skip_space();
-    if (p_ >= end_) fail("unexpected end of file while reading " + std::string(what) + " (truncated file?)");
+    if (p_ >= end_) fail("unexpected end of file while reading " + std::string(what) + " (" + eof_hint_ + ")");
     const char* s = p_;
     while (p_ < end_ && !is_space(*p_)) ++p_;
     return {s, static_cast<size_t>(p_ - s)};
@@ -122,6 +126,7 @@ class TextScanner {
   std::string path_;
   char comment_;
   std::vector<std::string>* comments_ = nullptr;
+  std::string eof_hint_ = "truncated file";
   size_t line_ = 1;
 };
 

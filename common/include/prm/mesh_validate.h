@@ -16,6 +16,7 @@ struct ComponentReport {
   long euler = 0;     // V - E + F
   bool manifold = true;
   int genus = -1;     // (2 - euler - boundary_loops) / 2 for a manifold, oriented component; -1 otherwise
+                      // (a vertex shared with another component counts in both; manifold is judged per component)
 };
 
 struct MeshReport {
@@ -24,12 +25,12 @@ struct MeshReport {
   size_t components = 0;
   size_t boundary_edges = 0, boundary_loops = 0;
   size_t non_manifold_edges = 0;       // edges with three or more faces
-  size_t non_manifold_vertices = 0;    // vertices whose faces form more than one fan
+  size_t non_manifold_vertices = 0;    // vertices whose faces form more than one edge-connected fan (pinches)
   size_t repeated_index_faces = 0;     // a face that uses one vertex twice
   size_t zero_area_faces = 0;          // distinct vertices, zero area (collinear or coincident points)
   size_t duplicate_faces = 0;          // same three vertices as an earlier face (either orientation)
   size_t inconsistent_edges = 0;       // two faces traverse the edge in the same direction
-  long euler = 0;
+  long euler = 0;                      // V - E + F of the whole mesh, over referenced vertices
   std::vector<ComponentReport> per_component;  // sorted by decreasing face count
   Vec3 bbox_min{0, 0, 0}, bbox_max{0, 0, 0};
   double diagonal = 0;
