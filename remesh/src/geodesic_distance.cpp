@@ -1,5 +1,7 @@
 #include "geodesic_distance.h"
 
+#include <tbb/parallel_for.h>
+
 #include <algorithm>
 #include <cmath>
 #include <queue>
@@ -8,103 +10,118 @@
 
 namespace prm::remesh {
 
-VertexStar vertex_star(const Mesh& m) {
-  const size_t nv = m.positions.size();
-  VertexStar s;
-  s.offset.assign(nv + 1, 0);
-  for (const Tri& t : m.triangles)
-    for (uint32_t v : t) ++s.offset[v + 1];
-  for (size_t v = 0; v < nv; ++v) s.offset[v + 1] += s.offset[v];
-  s.faces.resize(s.offset[nv]);
-  std::vector<uint32_t> fill(s.offset.begin(), s.offset.end() - 1);
-  for (uint32_t f = 0; f < m.triangles.size(); ++f)
-    for (uint32_t v : m.triangles[f]) s.faces[fill[v]++] = f;
-  // Neighbours: the other corners of the faces around v, deduplicated.
-  s.nbr_offset.assign(nv + 1, 0);
-  std::vector<uint32_t> tmp;
-  for (uint32_t v = 0; v < nv; ++v) {
-    tmp.clear();
-    for (uint32_t i = s.offset[v]; i < s.offset[v + 1]; ++i)
-      for (uint32_t w : m.triangles[s.faces[i]])
-        if (w != v) tmp.push_back(w);
-    std::sort(tmp.begin(), tmp.end());
-    tmp.erase(std::unique(tmp.begin(), tmp.end()), tmp.end());
-    s.neighbours.insert(s.neighbours.end(), tmp.begin(), tmp.end());
-    s.nbr_offset[v + 1] = static_cast<uint32_t>(s.neighbours.size());
-  }
-  return s;
-}
-
 namespace {
 
-// Distance at x from a planar front through a (distance da) and b (distance db): the virtual source s lies at
-// distances da, db from a, b on the far side of ab; valid when the ray s -> x crosses segment ab.
+// The distance at x of a front known at a (da) and b (db) that crosses the triangle (a, b, x), or +infinity when
+// the front's characteristic through x does not cross segment ab (then the edges give the value).
 double triangle_update(const Vec3& a, const Vec3& b, const Vec3& x, double da, double db) {
   const Vec3 e = b - a;
-  const double L = norm(e);
-  if (L <= 0) return HUGE_VAL;
-  const Vec3 ex = e * (1.0 / L);
+  const double L2 = norm2(e);
+  if (!(L2 > 0)) return HUGE_VAL;
+  const double L = std::sqrt(L2);
   const Vec3 ax = x - a;
-  const double x1 = dot(ax, ex);
-  const double x2 = norm(ax - ex * x1);  // x at (x1, x2), x2 >= 0
-  if (x2 <= 0) return HUGE_VAL;
-  // Source s = (s1, -s2): s1^2 + s2^2 = da^2, (s1 - L)^2 + s2^2 = db^2.
-  const double s1 = (da * da - db * db + L * L) / (2 * L);
+  const double x1 = dot(ax, e) / L;                          // x in the frame a = (0, 0), b = (L, 0), x2 > 0
+  const double x2 = std::sqrt(std::max(0.0, norm2(ax) - x1 * x1));
+  if (!(x2 > 0)) return HUGE_VAL;
+  const double dd = db - da;
+  if (std::abs(dd) >= L) return HUGE_VAL;  // one of a, b lies on the other's shortest path: no front through both
+  // A virtual point source s = (s1, -s2) at distances da and db from a and b, when one exists: exact for fronts
+  // from a point, e.g. around a convex corner of the source set.
+  const double s1 = (da * da - db * db + L2) / (2 * L);
   const double s2sq = da * da - s1 * s1;
-  if (s2sq < 0) return HUGE_VAL;  // the front cannot pass through both a and b
-  const double s2 = std::sqrt(s2sq);
-  // Where the segment s -> x crosses the line of ab (y = 0): parameter along ab.
-  const double t = s1 + (x1 - s1) * (s2 / (s2 + x2));
+  if (s2sq >= 0) {
+    const double s2 = std::sqrt(s2sq);
+    const double t = s1 + (x1 - s1) * (s2 / (s2 + x2));  // where segment s -> x crosses the line of ab
+    if (t < 0 || t > L) return HUGE_VAL;
+    return std::hypot(x1 - s1, x2 + s2);
+  }
+  // Otherwise (da + db < L, e.g. both 0 on the rim of the source set) a planar front: unit direction
+  // n = (dd / L, sqrt(1 - (dd / L)^2)) and d(p) = da + n . p; its characteristic through x must cross ab.
+  const double n1 = dd / L, n2 = std::sqrt(1 - n1 * n1);
+  const double t = x1 - n1 * (x2 / n2);
   if (t < 0 || t > L) return HUGE_VAL;
-  const double dx = x1 - s1, dy = x2 + s2;
-  return std::sqrt(dx * dx + dy * dy);
+  return da + n1 * x1 + n2 * x2;
 }
 
 }  // namespace
 
-std::vector<double> geodesic_distance(const Mesh& m, const VertexStar& star, const std::vector<uint8_t>& source,
-                                      GeodesicMethod method) {
+void geodesic_distance(const Mesh& m, const VertexStar& star, const std::vector<uint8_t>& source,
+                       GeodesicMethod method, std::vector<double>& d) {
   const size_t nv = m.positions.size();
-  std::vector<double> d(nv, HUGE_VAL);
+  d.assign(nv, HUGE_VAL);
   std::vector<uint8_t> done(nv, 0);
   using Item = std::pair<double, uint32_t>;
-  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap;
-  for (uint32_t f = 0; f < m.triangles.size(); ++f)
-    if (source[f])
-      for (uint32_t v : m.triangles[f])
-        if (d[v] != 0) {
-          d[v] = 0;
-          heap.push({0.0, v});
-        }
+  std::vector<Item> storage;
+  storage.reserve(nv / 4);
+  std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap(std::greater<Item>(), std::move(storage));
   auto relax = [&](uint32_t v, double value) {
     if (value < d[v]) {
       d[v] = value;
       heap.push({value, v});
     }
   };
-  while (!heap.empty()) {
-    const auto [du, u] = heap.top();
-    heap.pop();
-    if (done[u] || du > d[u]) continue;
-    done[u] = 1;
+  const bool fmm = method == GeodesicMethod::FastMarching;
+  // Settling u: its neighbours get the edge paths through u and, with FastMarching, the triangle updates of the
+  // faces (u, p, q) where p is settled and q is not.
+  auto settle = [&](uint32_t u) {
+    const double du = d[u];
     for (uint32_t i = star.nbr_offset[u]; i < star.nbr_offset[u + 1]; ++i) {
       const uint32_t w = star.neighbours[i];
-      if (!done[w]) relax(w, du + norm(m.positions[w] - m.positions[u]));
+      if (!done[w]) relax(w, du + star.length[i]);
     }
-    if (method != GeodesicMethod::FastMarching) continue;
-    // Triangle updates: in each face (u, w, x) with w settled, x gets the planar-front distance.
+    if (!fmm) return;
     for (uint32_t i = star.offset[u]; i < star.offset[u + 1]; ++i) {
       const Tri& t = m.triangles[star.faces[i]];
-      for (int k = 0; k < 3; ++k) {
-        const uint32_t x = t[static_cast<size_t>(k)];
-        if (x == u || done[x]) continue;
-        const uint32_t w = t[0] != u && t[0] != x ? t[0] : t[1] != u && t[1] != x ? t[1] : t[2];
-        if (!done[w]) continue;
-        relax(x, triangle_update(m.positions[u], m.positions[w], m.positions[x], d[u], d[w]));
-      }
+      const int k = t[0] == u ? 0 : t[1] == u ? 1 : 2;
+      const uint32_t p = t[static_cast<size_t>((k + 1) % 3)], q = t[static_cast<size_t>((k + 2) % 3)];
+      if (done[p] && !done[q]) relax(q, triangle_update(m.positions[u], m.positions[p], m.positions[q], du, d[p]));
+      if (done[q] && !done[p]) relax(p, triangle_update(m.positions[u], m.positions[q], m.positions[p], du, d[q]));
     }
+  };
+  // The sources are settled at 0 without the heap; the front starts from the ones on the rim of the source set.
+  for (uint32_t f = 0; f < m.triangles.size(); ++f)
+    if (source[f])
+      for (uint32_t v : m.triangles[f]) {
+        d[v] = 0;
+        done[v] = 1;
+      }
+  for (uint32_t v = 0; v < nv; ++v) {
+    if (!done[v]) continue;
+    bool rim = false;
+    for (uint32_t i = star.nbr_offset[v]; i < star.nbr_offset[v + 1] && !rim; ++i) rim = !done[star.neighbours[i]];
+    if (rim) settle(v);
   }
-  return d;
+  while (!heap.empty()) {
+    const uint32_t u = heap.top().second;
+    heap.pop();
+    if (done[u]) continue;
+    done[u] = 1;
+    settle(u);
+  }
+}
+
+std::vector<AxisValues> axis_distance_fields(const Mesh& mesh, const VertexStar& star,
+                                             const std::vector<Vec3>& normals, double tau, GeodesicMethod method,
+                                             bool parallel) {
+  const size_t nv = mesh.positions.size(), nf = mesh.triangles.size();
+  std::vector<AxisValues> D(nv);
+  // Larger than any geodesic distance: the sum of all edge lengths (each counted twice).
+  double beyond = 1;
+  for (double l : star.length) beyond += l;
+  auto field = [&](size_t a) {
+    std::vector<uint8_t> src(nf);
+    for (size_t f = 0; f < nf; ++f)
+      src[f] = norm2(normals[f]) > 0 && axis_component(normals[f], static_cast<int>(a)) < tau;
+    std::vector<double> d;
+    geodesic_distance(mesh, star, src, method, d);
+    for (size_t v = 0; v < nv; ++v) D[v][a] = std::min(d[v], beyond);
+  };
+  if (parallel) {
+    tbb::parallel_for(size_t{0}, size_t{kReliefAxes}, field);
+  } else {
+    for (size_t a = 0; a < kReliefAxes; ++a) field(a);
+  }
+  return D;
 }
 
 }  // namespace prm::remesh

@@ -19,6 +19,7 @@ void add_info_command(CLI::App& root);
 void add_compare_command(CLI::App& root);
 void add_repair_command(CLI::App& root);
 void add_reliefs_command(CLI::App& root);
+void add_render_command(CLI::App& root);
 void add_remesh_command(CLI::App& root);
 void add_encode_command(CLI::App& root);
 void add_decode_command(CLI::App& root);

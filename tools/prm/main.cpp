@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   add_compare_command(app);
   add_repair_command(app);
   add_reliefs_command(app);
+  add_render_command(app);
   add_remesh_command(app);
   add_encode_command(app);
   add_decode_command(app);
