@@ -259,10 +259,12 @@ void AabbTree::build(const std::vector<Vec3>& positions, const std::vector<Tri>&
   nodes_.shrink_to_fit();
 
   triangles_.resize(n);
+  slot_.resize(n);
   tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t k = r.begin(); k != r.end(); ++k) {
       const Tri& f = triangles[ids_[k]];
       triangles_[k] = Triangle{positions[f[0]], positions[f[1]], positions[f[2]]};
+      slot_[ids_[k]] = static_cast<uint32_t>(k);
     }
   });
 }
@@ -294,7 +296,14 @@ AabbTree::Hit AabbTree::closest(const Vec3& p, double bound2) const {
   return hit;
 }
 
-void AabbTree::closest(const Vec3& p, Hit& hint) const { search(p, hint, hint.found() ? norm2(p - hint.point) : HUGE_VAL); }
+void AabbTree::closest(const Vec3& p, Hit& hint) const {
+  if (!hint.found() || hint.face >= slot_.size()) return search(p, hint, HUGE_VAL);
+  // The hint's triangle is usually the answer or close to it: its exact distance is the tightest start bound.
+  const Triangle& t = triangles_[slot_[hint.face]];
+  const Vec3 q = closest_point_on_triangle(p, t.a, t.b, t.c);
+  hint.point = q;
+  search(p, hint, norm2(p - q));
+}
 
 void AabbTree::search(const Vec3& p, Hit& hit, double best) const {
   hit.distance2 = best;

@@ -40,10 +40,9 @@ class AabbTree {
   // Only looks for points closer than sqrt(bound2) (a known upper bound makes the search faster); returns a Hit with
   // found() false if there is none.
   Hit closest(const Vec3& p, double bound2) const;
-  // Starts from `hint`, a surface point already known (e.g. the answer for a nearby query point): its distance to p
-  // bounds the search from the start, which makes coherent query sequences much faster. `hint` is updated in place;
-  // if no surface point is closer than hint.point, hint.point and hint.face stay as they are and only
-  // hint.distance2 is updated. A hint with found() false starts an unbounded search.
+  // Starts from `hint`, the answer for a nearby query point: the exact distance from p to the hint's triangle bounds
+  // the search from the start, which makes coherent query sequences much faster. `hint` is updated in place to the
+  // answer for p. A hint with found() false starts an unbounded search.
   void closest(const Vec3& p, Hit& hint) const;
 
   size_t num_triangles() const { return triangles_.size(); }
@@ -74,6 +73,7 @@ class AabbTree {
   std::vector<Node> nodes_;
   std::vector<Triangle> triangles_;  // in leaf order
   std::vector<uint32_t> ids_;        // triangles_[k] is the mesh's triangle ids_[k]
+  std::vector<uint32_t> slot_;       // the inverse: triangle f is triangles_[slot_[f]]
 };
 
 }  // namespace prm
