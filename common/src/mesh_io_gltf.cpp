@@ -5,6 +5,8 @@
 #include <cmath>
 #include <cstring>
 
+#include <sys/stat.h>
+
 #include <tiny_gltf.h>
 
 #include "mesh_io_internal.h"
@@ -161,10 +163,24 @@ void add_primitive(const prm_tinygltf::Model& m, const prm_tinygltf::Primitive& 
   }
 }
 
+// External buffers (a .gltf's "uri") are read only from regular files: a hostile file must not make the reader block
+// on a FIFO or a device.
+bool read_regular_file(std::vector<unsigned char>* out, std::string* err, const std::string& file, void* user) {
+  struct stat st;
+  if (::stat(file.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) {
+    if (err) *err += "the buffer file '" + file + "' is not a regular file\n";
+    return false;
+  }
+  return prm_tinygltf::ReadWholeFile(out, err, file, user);
+}
+
 }  // namespace
 
 RawMesh read_gltf(const std::string& path) {
   prm_tinygltf::TinyGLTF loader;
+  prm_tinygltf::FsCallbacks fs = {&prm_tinygltf::FileExists, &prm_tinygltf::ExpandFilePath, &read_regular_file,
+                                  &prm_tinygltf::WriteWholeFile, nullptr};
+  loader.SetFsCallbacks(fs);
   prm_tinygltf::Model model;
   std::string err, warn;
   const std::vector<char> head = read_file(path);  // also reports a missing file as IoError

@@ -103,7 +103,11 @@ class BodyReader {
     if (enc_ == Encoding::Ascii) {
       const std::string_view tok = text_.token(what);
       // A float property holds float values: the text of one is rounded as the binary form would be.
-      if (t == ScalarType::Float32) return static_cast<float>(text_.parse_double(tok, what));
+      if (t == ScalarType::Float32) {
+        const double v = text_.parse_double(tok, what);
+        if (!fits(t, v)) text_.fail("'" + std::string(tok.substr(0, 40)) + "' does not fit a float (" + what + ")");
+        return static_cast<float>(v);
+      }
       if (t == ScalarType::Float64) return text_.parse_double(tok, what);
       const double v = static_cast<double>(text_.parse_int(tok, what));
       if (!fits(t, v)) text_.fail(std::to_string(text_.parse_int(tok, what)) + " does not fit a " + type_name(t) + " (" + what + ")");

@@ -98,6 +98,7 @@ INSTANTIATE_TEST_SUITE_P(
                     HostileCase{"hostile_garbage.stl", {"binary STL size is 1000 bytes"}},
                     HostileCase{"hostile_garbage.glb", {"malformed glTF"}},
                     HostileCase{"hostile_not_json.gltf", {"malformed glTF"}},
+                    HostileCase{"hostile_device_buffer.gltf", {"dev/zero", "not a regular file"}},
                     HostileCase{"hostile_not_off.off", {"not an OFF file"}},
                     HostileCase{"hostile_no_faces.obj", {"no faces", "3 vertices"}},
                     HostileCase{"hostile_empty.ply", {"no end_header"}},

@@ -253,6 +253,7 @@ TEST(MeshIoGltf, NodeTransformsAreApplied) {
 
 TEST(MeshIoGltf, GlbAndInstancedMirroredMeshKeepOutwardFaces) {
   expect_tetrahedron(read_mesh(data_path("tet.glb")), "tet.glb");
+  expect_tetrahedron(read_mesh(data_path("tet_external.gltf")), "tet_external.gltf");  // buffer in a .bin beside it
   const Mesh m = read_mesh(data_path("tet_instanced.glb"));
   EXPECT_EQ(m.num_vertices(), 8u);
   EXPECT_EQ(m.num_faces(), 8u);

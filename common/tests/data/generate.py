@@ -291,6 +291,11 @@ def valid_gltf():
                                                  {'mesh': 0, 'scale': [2, 2, 2]}])
     model['buffers'][0]['uri'] = 'data:application/octet-stream;base64,' + base64.b64encode(buf).decode()
     write('tet_transformed.gltf', json.dumps(model, indent=1) + '\n')
+    # .gltf with its buffer in a file beside it.
+    model, buf = gltf_model(TET_V, flat)
+    model['buffers'][0]['uri'] = 'tet_external.bin'
+    write('tet_external.gltf', json.dumps(model, indent=1) + '\n')
+    write('tet_external.bin', buf)
     # .glb, uint32 indices, no node transform; the same mesh placed twice by two nodes (a mirror flips the faces).
     model, buf = gltf_model(TET_V, flat, index_type=5125)
     write('tet.glb', glb(model, buf))
@@ -312,6 +317,10 @@ def hostile_gltf():
     model, buf = gltf_model(nan_v, flat)
     write('hostile_nan.glb', glb(model, buf))
     write('hostile_empty.glb', b'')
+    model, buf = gltf_model(TET_V, flat)
+    # A device must not be read (it, or a FIFO, could block or never end); enough '..' to reach / from anywhere.
+    model['buffers'][0]['uri'] = '../' * 40 + 'dev/zero'
+    write('hostile_device_buffer.gltf', json.dumps(model, indent=1) + '\n')
     write('hostile_not_json.gltf', '{"asset": {"version": "2.0"}, "meshes": [ {"primitives": [\n')
 
 
