@@ -233,7 +233,8 @@ Mesh repair_mesh(const Mesh& in, RepairReport* report) {
     return std::make_pair(std::min(he[i].from, he[i].to), std::max(he[i].from, he[i].to));
   };
   std::sort(order.begin(), order.end(), [&](uint32_t x, uint32_t y) { return key(x) < key(y); });
-  std::vector<uint32_t> next(nv, UINT32_MAX);
+  const size_t n_now = m.positions.size();  // pinch splitting added vertices
+  std::vector<uint32_t> next(n_now, UINT32_MAX);
   size_t boundary_edges = 0;
   for (size_t i = 0; i < order.size();) {
     size_t j = i + 1;
@@ -246,7 +247,7 @@ Mesh repair_mesh(const Mesh& in, RepairReport* report) {
   }
 
   // Close each loop with a fan around its centroid; the fan traverses the loop's edges backwards.
-  for (uint32_t start = 0; start < nv && boundary_edges; ++start) {
+  for (uint32_t start = 0; start < n_now && boundary_edges; ++start) {
     if (next[start] == UINT32_MAX) continue;
     std::vector<uint32_t> loop;
     for (uint32_t v = start; next[v] != UINT32_MAX;) {

@@ -92,6 +92,23 @@ TEST(MeshRepair, PinchedVertexIsSplit) {
   expect_closed_manifold(out, 0);
 }
 
+TEST(MeshRepair, PinchedBoundaryVertexIsSplitBeforeHolesAreFilled) {
+  // A bow tie: two triangles sharing vertex 0; its boundary passes through 0 twice.
+  Mesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {-1, 0, 0}, {-1, -1, 0}};
+  m.triangles = {{0, 1, 2}, {0, 3, 4}};
+  RepairReport rep;
+  const Mesh out = repair_mesh(m, &rep);
+  EXPECT_EQ(rep.pinched_vertices_split, 1u);
+  EXPECT_EQ(rep.holes_filled, 2u);
+  EXPECT_EQ(rep.fill_triangles, 6u);
+  EXPECT_EQ(out.num_vertices(), 6u + 2u);
+  const MeshReport r = validate_mesh(out);
+  EXPECT_EQ(r.components, 2u);
+  EXPECT_TRUE(r.closed() && r.manifold() && r.oriented());
+  EXPECT_EQ(r.genus_sum(), 0);
+}
+
 TEST(MeshRepair, ZeroAreaSliverIsFlippedAway) {
   // A tetrahedron whose face (0, 1, 3) is split at the midpoint 4 of edge (0, 1); the T-junction is closed by the
   // zero-area face (0, 1, 4).
