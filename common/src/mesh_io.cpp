@@ -1,5 +1,5 @@
-// read_mesh / write_mesh: format dispatch and the cleanup every reader shares (triangulation, welding, dropping
-// unreferenced vertices).
+// read_mesh / write_mesh: format dispatch and the cleanup every reader shares (triangulation, welding,
+// dropping unreferenced vertices).
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -16,7 +16,9 @@ namespace prm {
 
 namespace io {
 
-[[noreturn]] void fail(const std::string& path, const std::string& what) { throw InputError(path + ": " + what); }
+[[noreturn]] void fail(const std::string& path, const std::string& what) {
+  throw InputError(path + ": " + what);
+}
 
 std::vector<char> read_file(const std::string& path) {
   std::FILE* f = std::fopen(path.c_str(), "rb");
@@ -50,7 +52,8 @@ void check_indices(const RawMesh& raw, const std::string& path) {
   const size_t nv = raw.positions.size();
   for (size_t k = 0; k < raw.num_polygons(); ++k) {
     const uint32_t b = raw.polygon_start[k], e = raw.polygon_start[k + 1];
-    if (e - b < 3) fail(path, "face " + std::to_string(k) + " has " + std::to_string(e - b) + " corners (at least 3)");
+    if (e - b < 3)
+      fail(path, "face " + std::to_string(k) + " has " + std::to_string(e - b) + " corners (at least 3)");
     for (uint32_t c = b; c < e; ++c)
       if (raw.corners[c] >= nv)
         fail(path, "face " + std::to_string(k) + " uses vertex " + std::to_string(raw.corners[c]) +
@@ -61,15 +64,16 @@ void check_indices(const RawMesh& raw, const std::string& path) {
 void check_finite(const RawMesh& raw, const std::string& path) {
   for (size_t v = 0; v < raw.positions.size(); ++v)
     for (double c : raw.positions[v])
-      if (!std::isfinite(c)) fail(path, "vertex " + std::to_string(v) + " has a non-finite coordinate (NaN or inf)");
+      if (!std::isfinite(c))
+        fail(path, "vertex " + std::to_string(v) + " has a non-finite coordinate (NaN or inf)");
 }
 
 namespace {
 
-// Ear clipping in the plane of the polygon (Newell normal), walking a cursor round the ring so that a polygon of n
-// corners costs O(n^2). Falls back to a fan when no ear is found (corners nearly collinear, self-intersecting
-// polygon), for polygons above kMaxEarClipCorners and once the file has used up its work budget (a hostile file
-// could otherwise ask for O(n^3) work per polygon).
+// Ear clipping in the plane of the polygon (Newell normal), walking a cursor round the ring so that a polygon
+// of n corners costs O(n^2). Falls back to a fan when no ear is found (corners nearly collinear,
+// self-intersecting polygon), for polygons above kMaxEarClipCorners and once the file has used up its work
+// budget (a hostile file could otherwise ask for O(n^3) work per polygon).
 constexpr size_t kMaxEarClipCorners = 256;
 
 struct Triangulator {
@@ -77,7 +81,8 @@ struct Triangulator {
   size_t fan_fallbacks = 0;
 };
 
-void triangulate(const std::vector<Vec3>& pos, const uint32_t* c, size_t n, std::vector<Tri>& out, Triangulator& tr) {
+void triangulate(const std::vector<Vec3>& pos, const uint32_t* c, size_t n, std::vector<Tri>& out,
+                 Triangulator& tr) {
   if (n == 3) {
     out.push_back({c[0], c[1], c[2]});
     return;
@@ -159,9 +164,9 @@ std::vector<uint32_t> weld_map(const std::vector<Vec3>& pos, double tol) {
     }
     return rep;
   }
-  // Tolerance: a hash grid of cell size tol; each vertex joins the first earlier vertex within tol, looking in its
-  // own cell and the 26 around it. Cell coordinates are clamped so that a tiny tolerance on large coordinates cannot
-  // overflow (the distance test decides anyway).
+  // Tolerance: a hash grid of cell size tol; each vertex joins the first earlier vertex within tol, looking
+  // in its own cell and the 26 around it. Cell coordinates are clamped so that a tiny tolerance on large
+  // coordinates cannot overflow (the distance test decides anyway).
   struct Cell {
     int64_t x, y, z;
     bool operator==(const Cell& o) const { return x == o.x && y == o.y && z == o.z; }
@@ -209,7 +214,8 @@ Mesh finish_mesh(RawMesh raw, const ReadOptions& options, bool weld_auto, ReadRe
   const size_t nv = raw.positions.size();
 
   // Welding.
-  const bool weld = options.weld == ReadOptions::Weld::Always || (options.weld == ReadOptions::Weld::Auto && weld_auto);
+  const bool weld =
+      options.weld == ReadOptions::Weld::Always || (options.weld == ReadOptions::Weld::Auto && weld_auto);
   std::vector<uint32_t> rep(nv);
   std::iota(rep.begin(), rep.end(), 0u);
   if (weld) {
@@ -228,9 +234,10 @@ Mesh finish_mesh(RawMesh raw, const ReadOptions& options, bool weld_auto, ReadRe
     tri_polygon.resize(tris.size(), static_cast<uint32_t>(k));
   }
   if (triangulator.fan_fallbacks)
-    report.notes.push_back(std::to_string(triangulator.fan_fallbacks) +
-                           " polygon(s) could not be ear-clipped (self-intersecting, collinear or huge) and were "
-                           "split as fans");
+    report.notes.push_back(
+        std::to_string(triangulator.fan_fallbacks) +
+        " polygon(s) could not be ear-clipped (self-intersecting, collinear or huge) and were "
+        "split as fans");
   // Drop triangles that use a vertex twice (after welding).
   std::vector<Tri> kept;
   std::vector<uint32_t> kept_polygon;
@@ -291,7 +298,8 @@ Mesh finish_mesh(RawMesh raw, const ReadOptions& options, bool weld_auto, ReadRe
 MeshFormat format_from_path(const std::string& path) {
   std::string ext;
   const size_t dot = path.find_last_of('.');
-  if (dot != std::string::npos && path.find_first_of("/\\", dot) == std::string::npos) ext = path.substr(dot + 1);
+  if (dot != std::string::npos && path.find_first_of("/\\", dot) == std::string::npos)
+    ext = path.substr(dot + 1);
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   if (ext == "obj") return MeshFormat::Obj;
   if (ext == "ply") return MeshFormat::Ply;
@@ -304,13 +312,20 @@ MeshFormat format_from_path(const std::string& path) {
 
 const char* format_name(MeshFormat f) {
   switch (f) {
-    case MeshFormat::Obj: return "OBJ";
-    case MeshFormat::Ply: return "PLY";
-    case MeshFormat::Off: return "OFF";
-    case MeshFormat::Stl: return "STL";
-    case MeshFormat::Gltf: return "glTF";
-    case MeshFormat::Glb: return "GLB";
-    case MeshFormat::Auto: break;
+    case MeshFormat::Obj:
+      return "OBJ";
+    case MeshFormat::Ply:
+      return "PLY";
+    case MeshFormat::Off:
+      return "OFF";
+    case MeshFormat::Stl:
+      return "STL";
+    case MeshFormat::Gltf:
+      return "glTF";
+    case MeshFormat::Glb:
+      return "GLB";
+    case MeshFormat::Auto:
+      break;
   }
   return "unknown";
 }
@@ -339,7 +354,8 @@ MeshFormat sniff(const std::string& path) {
   if (first != std::string::npos) {
     const size_t end = s.find_first_of(" \t\r\n", first);
     const std::string word = s.substr(first, end == std::string::npos ? std::string::npos : end - first);
-    if (word.size() >= 3 && word.size() <= 6 && word.compare(word.size() - 3, 3, "OFF") == 0) return MeshFormat::Off;
+    if (word.size() >= 3 && word.size() <= 6 && word.compare(word.size() - 3, 3, "OFF") == 0)
+      return MeshFormat::Off;
     if (s[first] == '{') return MeshFormat::Gltf;
     if (word == "v" || word == "vn" || word == "vt" || word == "o" || word == "g" || word == "mtllib" ||
         word[0] == '#')
@@ -362,9 +378,15 @@ Mesh read_mesh(const std::string& path, const ReadOptions& options, ReadReport* 
   io::RawMesh raw;
   bool weld_auto = false;
   switch (f) {
-    case MeshFormat::Obj: raw = io::read_obj(path); break;
-    case MeshFormat::Ply: raw = io::read_ply(path, options.keep_properties); break;
-    case MeshFormat::Off: raw = io::read_off(path); break;
+    case MeshFormat::Obj:
+      raw = io::read_obj(path);
+      break;
+    case MeshFormat::Ply:
+      raw = io::read_ply(path, options.keep_properties);
+      break;
+    case MeshFormat::Off:
+      raw = io::read_off(path);
+      break;
     case MeshFormat::Stl:
       raw = io::read_stl(path);
       weld_auto = true;
@@ -374,12 +396,14 @@ Mesh read_mesh(const std::string& path, const ReadOptions& options, ReadReport* 
       raw = io::read_gltf(path);
       weld_auto = true;
       break;
-    case MeshFormat::Auto: break;
+    case MeshFormat::Auto:
+      break;
   }
   if (raw.num_polygons() == 0)
-    io::fail(path, raw.positions.empty() ? std::string("the file has no vertices and no faces (not a mesh file?)")
-                                          : "the file has no faces (only " + std::to_string(raw.positions.size()) +
-                                                " vertices: a point cloud is not a mesh)");
+    io::fail(path, raw.positions.empty()
+                       ? std::string("the file has no vertices and no faces (not a mesh file?)")
+                       : "the file has no faces (only " + std::to_string(raw.positions.size()) +
+                             " vertices: a point cloud is not a mesh)");
   io::check_indices(raw, path);
   io::check_finite(raw, path);
   return io::finish_mesh(std::move(raw), options, weld_auto, r);
@@ -391,13 +415,24 @@ void write_mesh(const Mesh& mesh, const std::string& path, const WriteOptions& o
     for (uint32_t v : t)
       if (v >= mesh.positions.size()) throw std::invalid_argument("write_mesh: triangle index out of range");
   switch (f) {
-    case MeshFormat::Obj: io::write_obj(mesh, path); return;
-    case MeshFormat::Ply: io::write_ply(mesh, path, options); return;
-    case MeshFormat::Off: io::write_off(mesh, path); return;
-    case MeshFormat::Glb: io::write_glb(mesh, path, true); return;
-    case MeshFormat::Gltf: io::write_glb(mesh, path, false); return;
+    case MeshFormat::Obj:
+      io::write_obj(mesh, path);
+      return;
+    case MeshFormat::Ply:
+      io::write_ply(mesh, path, options);
+      return;
+    case MeshFormat::Off:
+      io::write_off(mesh, path);
+      return;
+    case MeshFormat::Glb:
+      io::write_glb(mesh, path, true);
+      return;
+    case MeshFormat::Gltf:
+      io::write_glb(mesh, path, false);
+      return;
     case MeshFormat::Stl:
-    case MeshFormat::Auto: break;
+    case MeshFormat::Auto:
+      break;
   }
   throw InputError(path + ": cannot write this format (use .obj, .ply, .off, .glb or .gltf)");
 }

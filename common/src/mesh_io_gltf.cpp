@@ -1,13 +1,13 @@
-// glTF 2.0 and GLB through tinygltf (compiled privately: gltf_ext/src/tinygltf_unit.cpp): the positions and indices of
-// every TRIANGLES (and TRIANGLE_STRIP / TRIANGLE_FAN) primitive of every mesh, placed by the node transforms of the
-// default scene (meshes no node uses are read untransformed). Writing: one mesh, float positions, uint32 indices.
+// glTF 2.0 and GLB through tinygltf (compiled privately: gltf_ext/src/tinygltf_unit.cpp): the positions and
+// indices of every TRIANGLES (and TRIANGLE_STRIP / TRIANGLE_FAN) primitive of every mesh, placed by the node
+// transforms of the default scene (meshes no node uses are read untransformed). Writing: one mesh, float
+// positions, uint32 indices.
+#include <sys/stat.h>
+#include <tiny_gltf.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-
-#include <sys/stat.h>
-
-#include <tiny_gltf.h>
 
 #include "mesh_io_internal.h"
 
@@ -16,7 +16,9 @@ namespace {
 
 using Mat4 = std::array<double, 16>;  // column-major, as glTF
 
-Mat4 identity() { return {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1}; }
+Mat4 identity() {
+  return {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+}
 
 Mat4 mul(const Mat4& a, const Mat4& b) {
   Mat4 r{};
@@ -43,10 +45,22 @@ Mat4 node_matrix(const prm_tinygltf::Node& n) {
   }
   if (n.rotation.size() == 4) {
     const double x = n.rotation[0], y = n.rotation[1], z = n.rotation[2], w = n.rotation[3];
-    r = {1 - 2 * (y * y + z * z), 2 * (x * y + z * w),     2 * (x * z - y * w),     0,
-         2 * (x * y - z * w),     1 - 2 * (x * x + z * z), 2 * (y * z + x * w),     0,
-         2 * (x * z + y * w),     2 * (y * z - x * w),     1 - 2 * (x * x + y * y), 0,
-         0,                       0,                       0,                       1};
+    r = {1 - 2 * (y * y + z * z),
+         2 * (x * y + z * w),
+         2 * (x * z - y * w),
+         0,
+         2 * (x * y - z * w),
+         1 - 2 * (x * x + z * z),
+         2 * (y * z + x * w),
+         0,
+         2 * (x * z + y * w),
+         2 * (y * z - x * w),
+         1 - 2 * (x * x + y * y),
+         0,
+         0,
+         0,
+         0,
+         1};
   }
   if (n.scale.size() == 3) {
     s[0] = n.scale[0];
@@ -64,13 +78,16 @@ struct View {
 };
 
 View accessor_view(const prm_tinygltf::Model& m, int index, const std::string& path, const char* what) {
-  if (index < 0 || static_cast<size_t>(index) >= m.accessors.size()) fail(path, std::string(what) + " accessor index out of range");
+  if (index < 0 || static_cast<size_t>(index) >= m.accessors.size())
+    fail(path, std::string(what) + " accessor index out of range");
   const auto& a = m.accessors[static_cast<size_t>(index)];
   if (a.bufferView < 0 || static_cast<size_t>(a.bufferView) >= m.bufferViews.size())
-    fail(path, std::string(what) + " accessor has no buffer view (compressed or sparse data is not supported)");
+    fail(path,
+         std::string(what) + " accessor has no buffer view (compressed or sparse data is not supported)");
   if (a.sparse.isSparse) fail(path, std::string(what) + " accessor is sparse (not supported)");
   const auto& bv = m.bufferViews[static_cast<size_t>(a.bufferView)];
-  if (bv.buffer < 0 || static_cast<size_t>(bv.buffer) >= m.buffers.size()) fail(path, "buffer index out of range");
+  if (bv.buffer < 0 || static_cast<size_t>(bv.buffer) >= m.buffers.size())
+    fail(path, "buffer index out of range");
   const auto& buf = m.buffers[static_cast<size_t>(bv.buffer)];
   View v;
   v.component = a.componentType;
@@ -89,8 +106,9 @@ View accessor_view(const prm_tinygltf::Model& m, int index, const std::string& p
   if (v.stride < v.elem || !start_ok ||
       (v.count > 0 && (view_end - start < v.elem || (v.count - 1) > (view_end - start - v.elem) / v.stride)))
     fail(path, std::string(what) + " accessor claims " + std::to_string(v.count) +
-                   " elements, which reach past the end of its buffer view (" + std::to_string(bv.byteLength) +
-                   " bytes; buffer " + std::to_string(buf.data.size()) + " bytes)");
+                   " elements, which reach past the end of its buffer view (" +
+                   std::to_string(bv.byteLength) + " bytes; buffer " + std::to_string(buf.data.size()) +
+                   " bytes)");
   v.data = buf.data.data() + start;
   return v;
 }
@@ -98,9 +116,18 @@ View accessor_view(const prm_tinygltf::Model& m, int index, const std::string& p
 uint32_t read_index(const View& v, size_t i) {
   const unsigned char* p = v.data + i * v.stride;
   switch (v.component) {
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return p[0];
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: { uint16_t x; std::memcpy(&x, p, 2); return x; }
-    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: { uint32_t x; std::memcpy(&x, p, 4); return x; }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return p[0];
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+      uint16_t x;
+      std::memcpy(&x, p, 2);
+      return x;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: {
+      uint32_t x;
+      std::memcpy(&x, p, 4);
+      return x;
+    }
   }
   return UINT32_MAX;
 }
@@ -108,14 +135,16 @@ uint32_t read_index(const View& v, size_t i) {
 void add_primitive(const prm_tinygltf::Model& m, const prm_tinygltf::Primitive& prim, const Mat4& xf,
                    const std::string& path, RawMesh& raw, uint64_t max_vertices) {
   const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
-  if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP && mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+  if (mode != TINYGLTF_MODE_TRIANGLES && mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+      mode != TINYGLTF_MODE_TRIANGLE_FAN) {
     raw.notes.push_back("a primitive that is not made of triangles (points or lines) was skipped");
     return;
   }
   const auto it = prim.attributes.find("POSITION");
   if (it == prim.attributes.end()) fail(path, "a triangle primitive has no POSITION attribute");
   const View pv = accessor_view(m, it->second, path, "POSITION");
-  if (pv.component != TINYGLTF_COMPONENT_TYPE_FLOAT || pv.elem != 12) fail(path, "POSITION must be float VEC3");
+  if (pv.component != TINYGLTF_COMPONENT_TYPE_FLOAT || pv.elem != 12)
+    fail(path, "POSITION must be float VEC3");
   if (raw.positions.size() + uint64_t{pv.count} > max_vertices)
     fail(path, "the nodes instance the meshes into more than " + std::to_string(max_vertices) +
                    " vertices (far more than the file stores)");
@@ -130,14 +159,16 @@ void add_primitive(const prm_tinygltf::Model& m, const prm_tinygltf::Primitive& 
   std::vector<uint32_t> idx;
   if (prim.indices >= 0) {
     const View iv = accessor_view(m, prim.indices, path, "indices");
-    if (iv.component != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE && iv.component != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
+    if (iv.component != TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE &&
+        iv.component != TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT &&
         iv.component != TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
       fail(path, "indices must be unsigned byte, short or int");
     idx.resize(iv.count);
     for (size_t i = 0; i < iv.count; ++i) {
       idx[i] = read_index(iv, i);
       if (idx[i] >= pv.count)
-        fail(path, "index " + std::to_string(idx[i]) + " is out of range (" + std::to_string(pv.count) + " vertices)");
+        fail(path, "index " + std::to_string(idx[i]) + " is out of range (" + std::to_string(pv.count) +
+                       " vertices)");
     }
   } else {
     idx.resize(pv.count);
@@ -156,16 +187,19 @@ void add_primitive(const prm_tinygltf::Model& m, const prm_tinygltf::Primitive& 
     for (size_t i = 0; i + 2 < idx.size(); i += 3) add(idx[i], idx[i + 1], idx[i + 2]);
   } else if (mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
     for (size_t i = 0; i + 2 < idx.size(); ++i)
-      if (i % 2) add(idx[i + 1], idx[i], idx[i + 2]);
-      else add(idx[i], idx[i + 1], idx[i + 2]);
+      if (i % 2)
+        add(idx[i + 1], idx[i], idx[i + 2]);
+      else
+        add(idx[i], idx[i + 1], idx[i + 2]);
   } else {
     for (size_t i = 1; i + 1 < idx.size(); ++i) add(idx[0], idx[i], idx[i + 1]);
   }
 }
 
-// External buffers (a .gltf's "uri") are read only from regular files: a hostile file must not make the reader block
-// on a FIFO or a device.
-bool read_regular_file(std::vector<unsigned char>* out, std::string* err, const std::string& file, void* user) {
+// External buffers (a .gltf's "uri") are read only from regular files: a hostile file must not make the
+// reader block on a FIFO or a device.
+bool read_regular_file(std::vector<unsigned char>* out, std::string* err, const std::string& file,
+                       void* user) {
   struct stat st;
   if (::stat(file.c_str(), &st) != 0 || !S_ISREG(st.st_mode)) {
     if (err) *err += "the buffer file '" + file + "' is not a regular file\n";
@@ -178,8 +212,8 @@ bool read_regular_file(std::vector<unsigned char>* out, std::string* err, const 
 
 RawMesh read_gltf(const std::string& path) {
   prm_tinygltf::TinyGLTF loader;
-  prm_tinygltf::FsCallbacks fs = {&prm_tinygltf::FileExists, &prm_tinygltf::ExpandFilePath, &read_regular_file,
-                                  &prm_tinygltf::WriteWholeFile, nullptr};
+  prm_tinygltf::FsCallbacks fs = {&prm_tinygltf::FileExists, &prm_tinygltf::ExpandFilePath,
+                                  &read_regular_file, &prm_tinygltf::WriteWholeFile, nullptr};
   loader.SetFsCallbacks(fs);
   prm_tinygltf::Model model;
   std::string err, warn;
@@ -201,7 +235,8 @@ RawMesh read_gltf(const std::string& path) {
   // Nodes may place one mesh many times; a small file must not expand without bound.
   uint64_t buffer_bytes = 0;
   for (const auto& b : model.buffers) buffer_bytes += b.data.size();
-  const uint64_t max_vertices = std::min<uint64_t>(kMaxElements, 16 * (buffer_bytes / 12) + (uint64_t{1} << 20));
+  const uint64_t max_vertices =
+      std::min<uint64_t>(kMaxElements, 16 * (buffer_bytes / 12) + (uint64_t{1} << 20));
   std::vector<uint8_t> used(model.meshes.size(), 0);
   const int scene = model.defaultScene >= 0 ? model.defaultScene : (model.scenes.empty() ? -1 : 0);
   if (scene >= 0 && static_cast<size_t>(scene) < model.scenes.size()) {
@@ -217,21 +252,24 @@ RawMesh read_gltf(const std::string& path) {
     while (!stack.empty()) {
       const Item it = stack.back();
       stack.pop_back();
-      if (it.node < 0 || static_cast<size_t>(it.node) >= model.nodes.size()) fail(path, "node index out of range");
+      if (it.node < 0 || static_cast<size_t>(it.node) >= model.nodes.size())
+        fail(path, "node index out of range");
       if (it.depth > 64 || ++visits > 1000000) fail(path, "the node hierarchy is cyclic or too deep");
       const auto& node = model.nodes[static_cast<size_t>(it.node)];
       const Mat4 xf = mul(it.parent, node_matrix(node));
       if (node.mesh >= 0) {
         if (static_cast<size_t>(node.mesh) >= model.meshes.size()) fail(path, "mesh index out of range");
         used[static_cast<size_t>(node.mesh)] = 1;
-        for (const auto& prim : model.meshes[static_cast<size_t>(node.mesh)].primitives) add_primitive(model, prim, xf, path, raw, max_vertices);
+        for (const auto& prim : model.meshes[static_cast<size_t>(node.mesh)].primitives)
+          add_primitive(model, prim, xf, path, raw, max_vertices);
       }
       for (int c : node.children) stack.push_back({c, xf, it.depth + 1});
     }
   }
   for (size_t m = 0; m < model.meshes.size(); ++m)
     if (!used[m])
-      for (const auto& prim : model.meshes[m].primitives) add_primitive(model, prim, identity(), path, raw, max_vertices);
+      for (const auto& prim : model.meshes[m].primitives)
+        add_primitive(model, prim, identity(), path, raw, max_vertices);
   raw.file_vertices = raw.positions.size();
   raw.file_faces = raw.num_polygons();
   if (!warn.empty()) raw.notes.push_back("tinygltf: " + warn.substr(0, warn.find('\n')));
@@ -253,7 +291,8 @@ void write_glb(const Mesh& mesh, const std::string& path, bool binary) {
       hi[a] = v ? std::max(hi[a], p[a]) : p[a];
     }
   }
-  for (size_t t = 0; t < nt; ++t) std::memcpy(buffer.data.data() + 12 * nv + 12 * t, mesh.triangles[t].data(), 12);
+  for (size_t t = 0; t < nt; ++t)
+    std::memcpy(buffer.data.data() + 12 * nv + 12 * t, mesh.triangles[t].data(), 12);
   model.buffers.push_back(std::move(buffer));
   prm_tinygltf::BufferView pv, iv;
   pv.buffer = 0;

@@ -35,8 +35,8 @@ struct RawMesh {
 std::vector<char> read_file(const std::string& path);
 void write_file(const std::string& path, const std::string& bytes);
 
-// The shortest decimal text that reads back to exactly v (as a float when as_float, else as a double): text formats
-// round-trip exactly.
+// The shortest decimal text that reads back to exactly v (as a float when as_float, else as a double): text
+// formats round-trip exactly.
 void append_number(std::string& out, double v, bool as_float);
 
 // "<path>: <what>" for messages.
@@ -47,8 +47,8 @@ void check_indices(const RawMesh& raw, const std::string& path);
 // Throws when a position is NaN or infinite.
 void check_finite(const RawMesh& raw, const std::string& path);
 
-// Triangulates (ear clipping in the polygon's plane; fan for triangles and convex quads), drops triangles with a
-// repeated index, welds, drops unreferenced vertices; fills the report.
+// Triangulates (ear clipping in the polygon's plane; fan for triangles and convex quads), drops triangles
+// with a repeated index, welds, drops unreferenced vertices; fills the report.
 Mesh finish_mesh(RawMesh raw, const ReadOptions& options, bool weld_auto, ReadReport& report);
 
 RawMesh read_obj(const std::string& path);

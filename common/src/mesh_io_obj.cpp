@@ -1,11 +1,11 @@
-// OBJ through tinyobjloader (MIT; Debian's libtinyobjloader-dev): positions and faces of every group, polygons
-// triangulated by read_mesh(); materials, normals and texture coordinates are ignored (no .mtl is opened). Relative
-// (negative) indices and the v/vt/vn corner forms are resolved by tinyobjloader.
+// OBJ through tinyobjloader (MIT; Debian's libtinyobjloader-dev): positions and faces of every group,
+// polygons triangulated by read_mesh(); materials, normals and texture coordinates are ignored (no .mtl is
+// opened). Relative (negative) indices and the v/vt/vn corner forms are resolved by tinyobjloader.
+#include <tiny_obj_loader.h>
+
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
-
-#include <tiny_obj_loader.h>
 
 #include "mesh_io_internal.h"
 #include "text_scanner.h"
@@ -13,11 +13,11 @@
 namespace prm::io {
 namespace {
 
-// tinyobjloader turns what it cannot parse into zeros ("v nan 0 0", "v 1 2" and "v abc 0 0" all give 0), wraps
-// indices that overflow an int, and parses numbers into floats (or, in its double build, not correctly rounded), so
-// every v and f line is checked here first and a bad one is refused with its line named. The positions are taken
-// from this pass (correctly rounded doubles: a written OBJ reads back exactly); tinyobjloader resolves the faces.
-// Also collects the '#' comments.
+// tinyobjloader turns what it cannot parse into zeros ("v nan 0 0", "v 1 2" and "v abc 0 0" all give 0),
+// wraps indices that overflow an int, and parses numbers into floats (or, in its double build, not correctly
+// rounded), so every v and f line is checked here first and a bad one is refused with its line named. The
+// positions are taken from this pass (correctly rounded doubles: a written OBJ reads back exactly);
+// tinyobjloader resolves the faces. Also collects the '#' comments.
 void scan_obj_text(const std::vector<char>& data, const std::string& path, RawMesh& raw) {
   TextScanner in(data.data(), data.data() + data.size(), path, '#');
   in.collect_comments(&raw.comments);
@@ -29,11 +29,14 @@ void scan_obj_text(const std::vector<char>& data, const std::string& path, RawMe
       Vec3 p{0, 0, 0};
       while (!in.at_line_end()) {
         const double x = in.parse_double(in.token("a coordinate"), "a vertex coordinate");
-        if (!std::isfinite(x)) in.fail("vertex " + std::to_string(vertices + 1) + " has a non-finite coordinate (NaN or inf)");
+        if (!std::isfinite(x))
+          in.fail("vertex " + std::to_string(vertices + 1) + " has a non-finite coordinate (NaN or inf)");
         if (n < 3) p[static_cast<size_t>(n)] = x;
         ++n;
       }
-      if (n < 3) in.fail("vertex " + std::to_string(vertices + 1) + " has " + std::to_string(n) + " coordinates (3 needed)");
+      if (n < 3)
+        in.fail("vertex " + std::to_string(vertices + 1) + " has " + std::to_string(n) +
+                " coordinates (3 needed)");
       raw.positions.push_back(p);
       ++vertices;
     } else if (key == "f") {
@@ -42,7 +45,8 @@ void scan_obj_text(const std::vector<char>& data, const std::string& path, RawMe
         const std::string_view t = in.token("a face corner");
         const int64_t i = in.parse_int(t.substr(0, t.find('/')), "a vertex index");
         if (i == 0) in.fail("vertex index 0 (OBJ indices start at 1)");
-        if (i > INT32_MAX || i < -INT32_MAX) in.fail("vertex index " + std::to_string(i) + " is out of range");
+        if (i > INT32_MAX || i < -INT32_MAX)
+          in.fail("vertex index " + std::to_string(i) + " is out of range");
         if (i < 0 && -i > vertices)
           in.fail("relative vertex index " + std::to_string(i) + " reaches before the first vertex (" +
                   std::to_string(vertices) + " vertices so far)");
@@ -74,8 +78,9 @@ RawMesh read_obj(const std::string& path) {
   }
   const size_t nv = raw.positions.size();
   if (reader.GetAttrib().vertices.size() != 3 * nv)
-    fail(path, "tinyobjloader found " + std::to_string(reader.GetAttrib().vertices.size() / 3) + " vertices, the " +
-                   "line scan " + std::to_string(nv) + " (a line form neither reads the same way)");
+    fail(path, "tinyobjloader found " + std::to_string(reader.GetAttrib().vertices.size() / 3) +
+                   " vertices, the " + "line scan " + std::to_string(nv) +
+                   " (a line form neither reads the same way)");
   raw.file_vertices = nv;
   std::vector<uint32_t> poly;
   for (const auto& shape : reader.GetShapes()) {
@@ -87,12 +92,15 @@ RawMesh read_obj(const std::string& path) {
       for (size_t k = 0; k < n; ++k) {
         const int idx = shape.mesh.indices[offset + k].vertex_index;
         if (idx < 0 || static_cast<size_t>(idx) >= nv)
-          fail(path, "face " + std::to_string(raw.num_polygons() + 1) + " uses vertex " + std::to_string(idx + 1) +
-                         ", but there are only " + std::to_string(nv) + " vertices");
+          fail(path, "face " + std::to_string(raw.num_polygons() + 1) + " uses vertex " +
+                         std::to_string(idx + 1) + ", but there are only " + std::to_string(nv) +
+                         " vertices");
         poly.push_back(static_cast<uint32_t>(idx));
       }
       offset += n;
-      if (n < 3) fail(path, "face " + std::to_string(raw.num_polygons() + 1) + " has " + std::to_string(n) + " corners");
+      if (n < 3)
+        fail(path,
+             "face " + std::to_string(raw.num_polygons() + 1) + " has " + std::to_string(n) + " corners");
       raw.add_polygon(poly.data(), n);
     }
   }
@@ -123,7 +131,8 @@ void write_obj(const Mesh& mesh, const std::string& path) {
     out += '\n';
   }
   for (const Tri& t : mesh.triangles)
-    out += "f " + std::to_string(t[0] + 1) + " " + std::to_string(t[1] + 1) + " " + std::to_string(t[2] + 1) + "\n";
+    out += "f " + std::to_string(t[0] + 1) + " " + std::to_string(t[1] + 1) + " " + std::to_string(t[2] + 1) +
+           "\n";
   write_file(path, out);
 }
 

@@ -1,6 +1,6 @@
 // OFF (ASCII): "OFF" (or NOFF, COFF, CNOFF, STOFF...) then "V F E", V vertex lines and F face lines
-// "n i1 .. in [colour]". Values after the first three coordinates of a vertex line and after a face's indices are
-// ignored (normals, colours, texture coordinates). '#' starts a comment.
+// "n i1 .. in [colour]". Values after the first three coordinates of a vertex line and after a face's indices
+// are ignored (normals, colours, texture coordinates). '#' starts a comment.
 #include <cstdio>
 
 #include "mesh_io_internal.h"
@@ -17,10 +17,13 @@ RawMesh read_off(const std::string& path) {
   in.set_eof_hint("truncated, or the header's counts do not match the content");
   std::string_view head = in.token("the OFF keyword");
   // The keyword may carry prefixes (ST, C, N, 4, n) and may be followed by the counts on the same line.
-  if (head.size() < 3 || head.substr(head.size() - 3) != "OFF") fail(path, "not an OFF file: it does not start with OFF");
+  if (head.size() < 3 || head.substr(head.size() - 3) != "OFF")
+    fail(path, "not an OFF file: it does not start with OFF");
   for (char c : head.substr(0, head.size() - 3)) {
-    if (c == '4' || c == 'n') fail(path, "only 3-dimensional OFF files are supported ('" + std::string(head) + "')");
-    if (c != 'S' && c != 'T' && c != 'C' && c != 'N') fail(path, "unknown OFF variant '" + std::string(head) + "'");
+    if (c == '4' || c == 'n')
+      fail(path, "only 3-dimensional OFF files are supported ('" + std::string(head) + "')");
+    if (c != 'S' && c != 'T' && c != 'C' && c != 'N')
+      fail(path, "unknown OFF variant '" + std::string(head) + "'");
   }
   const int64_t nv = in.integer("the vertex count");
   const int64_t nf = in.integer("the face count");
@@ -28,21 +31,25 @@ RawMesh read_off(const std::string& path) {
   if (nv < 0 || nf < 0) in.fail("negative vertex or face count");
   if (static_cast<uint64_t>(nv) > kMaxElements || static_cast<uint64_t>(nf) > kMaxElements)
     in.fail("the counts (" + std::to_string(nv) + " vertices, " + std::to_string(nf) + " faces) exceed 2^31");
-  // A vertex takes at least 6 characters ("0 0 0\n"), a face at least 8: a lying count is caught before allocating.
+  // A vertex takes at least 6 characters ("0 0 0\n"), a face at least 8: a lying count is caught before
+  // allocating.
   if (static_cast<uint64_t>(nv) * 6 + static_cast<uint64_t>(nf) * 8 > in.remaining())
-    in.fail("the header claims " + std::to_string(nv) + " vertices and " + std::to_string(nf) + " faces, but only " +
-            std::to_string(in.remaining()) + " bytes follow (truncated or lying header)");
+    in.fail("the header claims " + std::to_string(nv) + " vertices and " + std::to_string(nf) +
+            " faces, but only " + std::to_string(in.remaining()) +
+            " bytes follow (truncated or lying header)");
   raw.positions.resize(static_cast<size_t>(nv));
   raw.file_vertices = static_cast<size_t>(nv);
   for (int64_t v = 0; v < nv; ++v) {
-    for (size_t a = 0; a < 3; ++a) raw.positions[static_cast<size_t>(v)][a] = in.number("a vertex coordinate");
+    for (size_t a = 0; a < 3; ++a)
+      raw.positions[static_cast<size_t>(v)][a] = in.number("a vertex coordinate");
     while (!in.at_line_end()) in.token("vertex extras");
   }
   std::vector<uint32_t> poly;
   for (int64_t f = 0; f < nf; ++f) {
     const int64_t n = in.integer("a face's corner count");
     if (n < 3) in.fail("face " + std::to_string(f) + " has " + std::to_string(n) + " corners (at least 3)");
-    if (static_cast<uint64_t>(n) * 2 > in.remaining()) in.fail("face " + std::to_string(f) + " runs past the end of the file");
+    if (static_cast<uint64_t>(n) * 2 > in.remaining())
+      in.fail("face " + std::to_string(f) + " runs past the end of the file");
     poly.resize(static_cast<size_t>(n));
     for (int64_t k = 0; k < n; ++k) {
       const int64_t i = in.integer("a vertex index");

@@ -1,6 +1,7 @@
 // PLY, ASCII and binary (little and big endian): vertices (x, y, z and any scalar properties), faces
-// (vertex_indices / vertex_index lists, scalar properties) and triangle strips (igea.ply: one list with -1 restarts).
-// Hand-written: no Debian library reads tristrips and arbitrary typed properties with bounded allocation.
+// (vertex_indices / vertex_index lists, scalar properties) and triangle strips (igea.ply: one list with -1
+// restarts). Hand-written: no Debian library reads tristrips and arbitrary typed properties with bounded
+// allocation.
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -29,21 +30,32 @@ struct PlyElement {
 
 size_t type_size(ScalarType t) {
   switch (t) {
-    case ScalarType::Int8: case ScalarType::UInt8: return 1;
-    case ScalarType::Int16: case ScalarType::UInt16: return 2;
-    case ScalarType::Int32: case ScalarType::UInt32: case ScalarType::Float32: return 4;
-    case ScalarType::Float64: return 8;
+    case ScalarType::Int8:
+    case ScalarType::UInt8:
+      return 1;
+    case ScalarType::Int16:
+    case ScalarType::UInt16:
+      return 2;
+    case ScalarType::Int32:
+    case ScalarType::UInt32:
+    case ScalarType::Float32:
+      return 4;
+    case ScalarType::Float64:
+      return 8;
   }
   return 1;
 }
 
 bool parse_type(const std::string& s, ScalarType& t) {
-  static const struct { const char* name; ScalarType type; } kTypes[] = {
-      {"char", ScalarType::Int8},     {"int8", ScalarType::Int8},       {"uchar", ScalarType::UInt8},
-      {"uint8", ScalarType::UInt8},   {"short", ScalarType::Int16},     {"int16", ScalarType::Int16},
-      {"ushort", ScalarType::UInt16}, {"uint16", ScalarType::UInt16},   {"int", ScalarType::Int32},
-      {"int32", ScalarType::Int32},   {"uint", ScalarType::UInt32},     {"uint32", ScalarType::UInt32},
-      {"float", ScalarType::Float32}, {"float32", ScalarType::Float32}, {"double", ScalarType::Float64},
+  static const struct {
+    const char* name;
+    ScalarType type;
+  } kTypes[] = {
+      {"char", ScalarType::Int8},      {"int8", ScalarType::Int8},       {"uchar", ScalarType::UInt8},
+      {"uint8", ScalarType::UInt8},    {"short", ScalarType::Int16},     {"int16", ScalarType::Int16},
+      {"ushort", ScalarType::UInt16},  {"uint16", ScalarType::UInt16},   {"int", ScalarType::Int32},
+      {"int32", ScalarType::Int32},    {"uint", ScalarType::UInt32},     {"uint32", ScalarType::UInt32},
+      {"float", ScalarType::Float32},  {"float32", ScalarType::Float32}, {"double", ScalarType::Float64},
       {"float64", ScalarType::Float64}};
   for (const auto& k : kTypes)
     if (s == k.name) {
@@ -55,14 +67,22 @@ bool parse_type(const std::string& s, ScalarType& t) {
 
 const char* type_name(ScalarType t) {
   switch (t) {
-    case ScalarType::Int8: return "char";
-    case ScalarType::UInt8: return "uchar";
-    case ScalarType::Int16: return "short";
-    case ScalarType::UInt16: return "ushort";
-    case ScalarType::Int32: return "int";
-    case ScalarType::UInt32: return "uint";
-    case ScalarType::Float32: return "float";
-    case ScalarType::Float64: return "double";
+    case ScalarType::Int8:
+      return "char";
+    case ScalarType::UInt8:
+      return "uchar";
+    case ScalarType::Int16:
+      return "short";
+    case ScalarType::UInt16:
+      return "ushort";
+    case ScalarType::Int32:
+      return "int";
+    case ScalarType::UInt32:
+      return "uint";
+    case ScalarType::Float32:
+      return "float";
+    case ScalarType::Float64:
+      return "double";
   }
   return "float";
 }
@@ -77,14 +97,22 @@ std::string number_text(double v) {
 bool fits(ScalarType t, double v) {
   auto in = [&](double lo, double hi) { return v >= lo && v <= hi && v == std::floor(v); };
   switch (t) {
-    case ScalarType::Int8: return in(-128, 127);
-    case ScalarType::UInt8: return in(0, 255);
-    case ScalarType::Int16: return in(-32768, 32767);
-    case ScalarType::UInt16: return in(0, 65535);
-    case ScalarType::Int32: return in(-2147483648.0, 2147483647.0);
-    case ScalarType::UInt32: return in(0, 4294967295.0);
-    case ScalarType::Float32: return !std::isfinite(v) || std::fabs(v) <= 3.4028234663852886e38;
-    case ScalarType::Float64: return true;
+    case ScalarType::Int8:
+      return in(-128, 127);
+    case ScalarType::UInt8:
+      return in(0, 255);
+    case ScalarType::Int16:
+      return in(-32768, 32767);
+    case ScalarType::UInt16:
+      return in(0, 65535);
+    case ScalarType::Int32:
+      return in(-2147483648.0, 2147483647.0);
+    case ScalarType::UInt32:
+      return in(0, 4294967295.0);
+    case ScalarType::Float32:
+      return !std::isfinite(v) || std::fabs(v) <= 3.4028234663852886e38;
+    case ScalarType::Float64:
+      return true;
   }
   return false;
 }
@@ -93,10 +121,15 @@ bool fits(ScalarType t, double v) {
 class BodyReader {
  public:
   BodyReader(const std::vector<char>& data, size_t offset, Encoding enc, const std::string& path)
-      : data_(data), pos_(offset), enc_(enc), path_(path),
+      : data_(data),
+        pos_(offset),
+        enc_(enc),
+        path_(path),
         text_(data.data() + offset, data.data() + data.size(), path) {
     text_.set_eof_hint("truncated, or the header's counts do not match the content");
-    text_.set_line(static_cast<size_t>(std::count(data.begin(), data.begin() + static_cast<std::ptrdiff_t>(offset), '\n')) + 1);
+    text_.set_line(static_cast<size_t>(
+                       std::count(data.begin(), data.begin() + static_cast<std::ptrdiff_t>(offset), '\n')) +
+                   1);
   }
 
   double read(ScalarType t, const char* what) {
@@ -105,12 +138,15 @@ class BodyReader {
       // A float property holds float values: the text of one is rounded as the binary form would be.
       if (t == ScalarType::Float32) {
         const double v = text_.parse_double(tok, what);
-        if (!fits(t, v)) text_.fail("'" + std::string(tok.substr(0, 40)) + "' does not fit a float (" + what + ")");
+        if (!fits(t, v))
+          text_.fail("'" + std::string(tok.substr(0, 40)) + "' does not fit a float (" + what + ")");
         return static_cast<float>(v);
       }
       if (t == ScalarType::Float64) return text_.parse_double(tok, what);
       const double v = static_cast<double>(text_.parse_int(tok, what));
-      if (!fits(t, v)) text_.fail(std::to_string(text_.parse_int(tok, what)) + " does not fit a " + type_name(t) + " (" + what + ")");
+      if (!fits(t, v))
+        text_.fail(std::to_string(text_.parse_int(tok, what)) + " does not fit a " + type_name(t) + " (" +
+                   what + ")");
       return v;
     }
     const size_t n = type_size(t);
@@ -122,14 +158,43 @@ class BodyReader {
     pos_ += n;
     if (enc_ == Encoding::BinaryBig) std::reverse(b, b + n);
     switch (t) {
-      case ScalarType::Int8: { int8_t v; std::memcpy(&v, b, 1); return v; }
-      case ScalarType::UInt8: return b[0];
-      case ScalarType::Int16: { int16_t v; std::memcpy(&v, b, 2); return v; }
-      case ScalarType::UInt16: { uint16_t v; std::memcpy(&v, b, 2); return v; }
-      case ScalarType::Int32: { int32_t v; std::memcpy(&v, b, 4); return v; }
-      case ScalarType::UInt32: { uint32_t v; std::memcpy(&v, b, 4); return v; }
-      case ScalarType::Float32: { float v; std::memcpy(&v, b, 4); return v; }
-      case ScalarType::Float64: { double v; std::memcpy(&v, b, 8); return v; }
+      case ScalarType::Int8: {
+        int8_t v;
+        std::memcpy(&v, b, 1);
+        return v;
+      }
+      case ScalarType::UInt8:
+        return b[0];
+      case ScalarType::Int16: {
+        int16_t v;
+        std::memcpy(&v, b, 2);
+        return v;
+      }
+      case ScalarType::UInt16: {
+        uint16_t v;
+        std::memcpy(&v, b, 2);
+        return v;
+      }
+      case ScalarType::Int32: {
+        int32_t v;
+        std::memcpy(&v, b, 4);
+        return v;
+      }
+      case ScalarType::UInt32: {
+        uint32_t v;
+        std::memcpy(&v, b, 4);
+        return v;
+      }
+      case ScalarType::Float32: {
+        float v;
+        std::memcpy(&v, b, 4);
+        return v;
+      }
+      case ScalarType::Float64: {
+        double v;
+        std::memcpy(&v, b, 8);
+        return v;
+      }
     }
     return 0;
   }
@@ -161,7 +226,8 @@ RawMesh read_ply(const std::string& path, bool keep_properties) {
   // Header.
   size_t line_start = 0;
   auto next_line = [&](std::string& line) {
-    if (line_start >= data.size()) fail(path, "the header has no end_header line (truncated or not a PLY file)");
+    if (line_start >= data.size())
+      fail(path, "the header has no end_header line (truncated or not a PLY file)");
     size_t e = line_start;
     while (e < data.size() && data[e] != '\n') ++e;
     line.assign(data.data() + line_start, e - line_start);
@@ -187,10 +253,14 @@ RawMesh read_ply(const std::string& path, bool keep_properties) {
     if (key == "format") {
       std::string f, v;
       in >> f >> v;
-      if (f == "ascii") enc = Encoding::Ascii;
-      else if (f == "binary_little_endian") enc = Encoding::BinaryLittle;
-      else if (f == "binary_big_endian") enc = Encoding::BinaryBig;
-      else fail(path, "unknown PLY format '" + f + "'");
+      if (f == "ascii")
+        enc = Encoding::Ascii;
+      else if (f == "binary_little_endian")
+        enc = Encoding::BinaryLittle;
+      else if (f == "binary_big_endian")
+        enc = Encoding::BinaryBig;
+      else
+        fail(path, "unknown PLY format '" + f + "'");
       have_format = true;
     } else if (key == "comment" || key == "obj_info") {
       if (key == "comment") raw.comments.push_back(line.size() > 8 ? line.substr(8) : std::string());
@@ -198,11 +268,13 @@ RawMesh read_ply(const std::string& path, bool keep_properties) {
       PlyElement e;
       std::string count;
       in >> e.name >> count;
-      if (count.empty() || count[0] == '-') fail(path, "element '" + e.name + "' has a negative or missing count");
+      if (count.empty() || count[0] == '-')
+        fail(path, "element '" + e.name + "' has a negative or missing count");
       char* end = nullptr;
       const unsigned long long c = std::strtoull(count.c_str(), &end, 10);
       if (*end != '\0') fail(path, "element '" + e.name + "' has count '" + count + "', not a number");
-      if (c > kMaxElements) fail(path, "element '" + e.name + "' claims " + count + " entries (at most 2^31)");
+      if (c > kMaxElements)
+        fail(path, "element '" + e.name + "' claims " + count + " entries (at most 2^31)");
       e.count = c;
       elements.push_back(e);
     } else if (key == "property") {
@@ -260,14 +332,18 @@ RawMesh read_ply(const std::string& path, bool keep_properties) {
       raw.file_vertices = e.count;
       have_vertices = true;
     }
-    if ((is_face || is_strips) && ilist < 0) fail(path, "element '" + e.name + "' has no vertex_indices list");
+    if ((is_face || is_strips) && ilist < 0)
+      fail(path, "element '" + e.name + "' has no vertex_indices list");
     // Extra scalar properties kept per vertex / per face.
     std::vector<int> keep_slot(e.properties.size(), -1);
-    std::vector<Property>* props = is_vertex ? &raw.vertex_properties : is_face ? &raw.face_properties : nullptr;
+    std::vector<Property>* props = is_vertex ? &raw.vertex_properties
+                                   : is_face ? &raw.face_properties
+                                             : nullptr;
     if (keep_properties && props)
       for (size_t k = 0; k < e.properties.size(); ++k) {
         const PlyProperty& p = e.properties[k];
-        if (p.is_list || static_cast<int>(k) == ix || static_cast<int>(k) == iy || static_cast<int>(k) == iz) continue;
+        if (p.is_list || static_cast<int>(k) == ix || static_cast<int>(k) == iy || static_cast<int>(k) == iz)
+          continue;
         keep_slot[k] = static_cast<int>(props->size());
         props->push_back(Property{p.name, p.type, {}});
         props->back().values.reserve(e.count);
@@ -311,12 +387,13 @@ RawMesh read_ply(const std::string& path, bool keep_properties) {
       }
       if (is_face) {
         if (poly.size() < 3)
-          fail(path, "face " + std::to_string(i) + " has " + std::to_string(poly.size()) + " corners (at least 3)");
+          fail(path,
+               "face " + std::to_string(i) + " has " + std::to_string(poly.size()) + " corners (at least 3)");
         raw.add_polygon(poly.data(), poly.size());
         ++raw.file_faces;
       } else if (is_strips) {
-        // A strip's triangle k is (s[k], s[k+1], s[k+2]) for even k and (s[k+1], s[k], s[k+2]) for odd k; parity
-        // restarts after each -1; triangles that repeat a vertex are skipped.
+        // A strip's triangle k is (s[k], s[k+1], s[k+2]) for even k and (s[k+1], s[k], s[k+2]) for odd k;
+        // parity restarts after each -1; triangles that repeat a vertex are skipped.
         ++raw.file_faces;
         size_t run = 0;
         for (size_t j = 0; j < poly.size(); ++j) {
@@ -342,7 +419,8 @@ RawMesh read_ply(const std::string& path, bool keep_properties) {
   }
   if (!have_vertices) fail(path, "the file has no vertex element");
   if (strip_skipped)
-    raw.notes.push_back(std::to_string(strip_skipped) + " strip triangles that repeat a vertex (strip joins) were skipped");
+    raw.notes.push_back(std::to_string(strip_skipped) +
+                        " strip triangles that repeat a vertex (strip joins) were skipped");
   if (raw.strip_triangles && !raw.face_properties.empty()) raw.face_properties.clear();
   if (!body.at_end())
     raw.notes.push_back(std::to_string(body.remaining()) +
@@ -368,14 +446,44 @@ void put(std::string& out, double v, ScalarType t, bool binary, const std::strin
   }
   unsigned char b[8];
   switch (t) {
-    case ScalarType::Int8: { int8_t x = static_cast<int8_t>(v); std::memcpy(b, &x, 1); break; }
-    case ScalarType::UInt8: { uint8_t x = static_cast<uint8_t>(v); std::memcpy(b, &x, 1); break; }
-    case ScalarType::Int16: { int16_t x = static_cast<int16_t>(v); std::memcpy(b, &x, 2); break; }
-    case ScalarType::UInt16: { uint16_t x = static_cast<uint16_t>(v); std::memcpy(b, &x, 2); break; }
-    case ScalarType::Int32: { int32_t x = static_cast<int32_t>(v); std::memcpy(b, &x, 4); break; }
-    case ScalarType::UInt32: { uint32_t x = static_cast<uint32_t>(v); std::memcpy(b, &x, 4); break; }
-    case ScalarType::Float32: { float x = static_cast<float>(v); std::memcpy(b, &x, 4); break; }
-    case ScalarType::Float64: std::memcpy(b, &v, 8); break;
+    case ScalarType::Int8: {
+      int8_t x = static_cast<int8_t>(v);
+      std::memcpy(b, &x, 1);
+      break;
+    }
+    case ScalarType::UInt8: {
+      uint8_t x = static_cast<uint8_t>(v);
+      std::memcpy(b, &x, 1);
+      break;
+    }
+    case ScalarType::Int16: {
+      int16_t x = static_cast<int16_t>(v);
+      std::memcpy(b, &x, 2);
+      break;
+    }
+    case ScalarType::UInt16: {
+      uint16_t x = static_cast<uint16_t>(v);
+      std::memcpy(b, &x, 2);
+      break;
+    }
+    case ScalarType::Int32: {
+      int32_t x = static_cast<int32_t>(v);
+      std::memcpy(b, &x, 4);
+      break;
+    }
+    case ScalarType::UInt32: {
+      uint32_t x = static_cast<uint32_t>(v);
+      std::memcpy(b, &x, 4);
+      break;
+    }
+    case ScalarType::Float32: {
+      float x = static_cast<float>(v);
+      std::memcpy(b, &x, 4);
+      break;
+    }
+    case ScalarType::Float64:
+      std::memcpy(b, &v, 8);
+      break;
   }
   out.append(reinterpret_cast<const char*>(b), type_size(t));  // little-endian hosts only (x86-64, arm64)
 }
@@ -389,18 +497,21 @@ void write_ply(const Mesh& mesh, const std::string& path, const WriteOptions& op
   out += "ply\n";
   out += binary ? "format binary_little_endian 1.0\n" : "format ascii 1.0\n";
   for (const std::string& c : mesh.comments) {
-    if (c.find('\n') != std::string::npos) throw std::invalid_argument("write_ply: a comment contains a line break");
+    if (c.find('\n') != std::string::npos)
+      throw std::invalid_argument("write_ply: a comment contains a line break");
     out += "comment " + c + "\n";
   }
   out += "element vertex " + std::to_string(mesh.positions.size()) + "\n";
   for (const char* n : {"x", "y", "z"}) out += std::string("property ") + type_name(pt) + " " + n + "\n";
   const bool props = options.write_properties;
   if (props)
-    for (const Property& p : mesh.vertex_properties) out += std::string("property ") + type_name(p.type) + " " + p.name + "\n";
+    for (const Property& p : mesh.vertex_properties)
+      out += std::string("property ") + type_name(p.type) + " " + p.name + "\n";
   out += "element face " + std::to_string(mesh.triangles.size()) + "\n";
   out += "property list uchar int vertex_indices\n";
   if (props)
-    for (const Property& p : mesh.face_properties) out += std::string("property ") + type_name(p.type) + " " + p.name + "\n";
+    for (const Property& p : mesh.face_properties)
+      out += std::string("property ") + type_name(p.type) + " " + p.name + "\n";
   out += "end_header\n";
   for (size_t v = 0; v < mesh.positions.size(); ++v) {
     for (int a = 0; a < 3; ++a) {

@@ -1,6 +1,7 @@
-// STL, binary (80-byte header, uint32 count, 50 bytes per triangle) and ASCII ("solid ... facet ... vertex x y z").
-// A file is binary when its size is exactly 84 + 50 n for the count n it states, even if it starts with "solid".
-// STL stores every corner separately: read_mesh() welds coincident corners (exactly, by default).
+// STL, binary (80-byte header, uint32 count, 50 bytes per triangle) and ASCII ("solid ... facet ... vertex x
+// y z"). A file is binary when its size is exactly 84 + 50 n for the count n it states, even if it starts
+// with "solid". STL stores every corner separately: read_mesh() welds coincident corners (exactly, by
+// default).
 #include <algorithm>
 #include <cctype>
 #include <cstring>
@@ -17,7 +18,8 @@ RawMesh read_stl(const std::string& path) {
   uint32_t count = 0;
   if (data.size() >= 84) std::memcpy(&count, data.data() + 80, 4);
   const bool binary = data.size() >= 84 && data.size() == 84 + 50 * static_cast<uint64_t>(count);
-  // Binary files often start with "solid" too: one whose first bytes are not text is binary whatever its header says.
+  // Binary files often start with "solid" too: one whose first bytes are not text is binary whatever its
+  // header says.
   bool text = true;
   for (size_t i = 0; i < std::min<size_t>(data.size(), 512) && text; ++i) {
     const unsigned char c = static_cast<unsigned char>(data[i]);
@@ -60,7 +62,8 @@ RawMesh read_stl(const std::string& path) {
         continue;
       }
       if (t == "endloop") {
-        if (loop.size() != 3) in.fail("a facet has " + std::to_string(loop.size()) + " vertices (STL facets have 3)");
+        if (loop.size() != 3)
+          in.fail("a facet has " + std::to_string(loop.size()) + " vertices (STL facets have 3)");
         raw.add_polygon(loop.data(), 3);
         loop.clear();
         continue;
@@ -76,7 +79,8 @@ RawMesh read_stl(const std::string& path) {
         continue;
       }
       // Facet normals are numbers after "normal"; anything else is malformed.
-      if (!t.empty() && (std::isdigit(static_cast<unsigned char>(t[0])) || t[0] == '-' || t[0] == '+' || t[0] == '.'))
+      if (!t.empty() &&
+          (std::isdigit(static_cast<unsigned char>(t[0])) || t[0] == '-' || t[0] == '+' || t[0] == '.'))
         continue;
       in.fail("unexpected '" + std::string(t.substr(0, 40)) + "' in an ASCII STL file");
     }
@@ -87,7 +91,8 @@ RawMesh read_stl(const std::string& path) {
       fail(path, "binary STL size is " + std::to_string(data.size()) + " bytes, but its header states " +
                      std::to_string(count) + " triangles (" + std::to_string(84 + 50 * uint64_t{count}) +
                      " bytes): truncated or not an STL file");
-    fail(path, "not an STL file (" + std::to_string(data.size()) + " bytes: too short for binary STL, no 'solid' keyword)");
+    fail(path, "not an STL file (" + std::to_string(data.size()) +
+                   " bytes: too short for binary STL, no 'solid' keyword)");
   }
   raw.file_vertices = raw.positions.size();
   return raw;

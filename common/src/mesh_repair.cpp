@@ -1,7 +1,7 @@
-// prm repair: drop degenerate and duplicate faces, flip away zero-area slivers, close every hole with a fan around
-// the centroid of its boundary loop (paper §4: "patching each hole with a closed triangle fan centered at the average
-// of all vertices bounding the hole"). Sort-based; refuses what it cannot repair without guessing (non-manifold or
-// inconsistently oriented input).
+// prm repair: drop degenerate and duplicate faces, flip away zero-area slivers, close every hole with a fan
+// around the centroid of its boundary loop (paper §4: "patching each hole with a closed triangle fan centered
+// at the average of all vertices bounding the hole"). Sort-based; refuses what it cannot repair without
+// guessing (non-manifold or inconsistently oriented input).
 #include "prm/mesh_repair.h"
 
 #include <algorithm>
@@ -15,16 +15,19 @@
 namespace prm {
 namespace {
 
-bool repeats_vertex(const Tri& t) { return t[0] == t[1] || t[1] == t[2] || t[0] == t[2]; }
+bool repeats_vertex(const Tri& t) {
+  return t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
+}
 
 double area2(const Mesh& m, const Tri& t) {
   return norm(triangle_normal_area2(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]));
 }
 
-// Zero-area triangles with three distinct vertices: one vertex lies on the segment of the other two (a "cap").
-// Flipping that longest edge with the neighbouring triangle splits the neighbour at the middle vertex and removes the
-// sliver without changing the surface. Done only when the flip is safe: the neighbour exists, the new edge is not
-// already an edge, and both new triangles have area. Returns the number of flips; the rest stay (counted by the caller).
+// Zero-area triangles with three distinct vertices: one vertex lies on the segment of the other two (a
+// "cap"). Flipping that longest edge with the neighbouring triangle splits the neighbour at the middle vertex
+// and removes the sliver without changing the surface. Done only when the flip is safe: the neighbour exists,
+// the new edge is not already an edge, and both new triangles have area. Returns the number of flips; the
+// rest stay (counted by the caller).
 size_t flip_zero_area_faces(Mesh& m, double eps2) {
   const size_t nv = m.positions.size();
   std::vector<uint32_t> zero;
@@ -100,8 +103,8 @@ struct UnionFind {
   }
 };
 
-// Corners of one vertex are joined across every edge with two faces; a vertex whose corners form several groups is
-// pinched. Requires no edge with three or more faces. Returns the number of vertices added.
+// Corners of one vertex are joined across every edge with two faces; a vertex whose corners form several
+// groups is pinched. Requires no edge with three or more faces. Returns the number of vertices added.
 size_t split_pinched_vertices(Mesh& m) {
   const size_t nf = m.triangles.size();
   struct HalfEdge {
@@ -159,13 +162,15 @@ Mesh repair_mesh(const Mesh& in, RepairReport* report) {
   const size_t nv = in.positions.size();
   for (const Tri& t : in.triangles)
     for (uint32_t v : t)
-      if (v >= nv) throw std::invalid_argument("repair_mesh: a triangle uses vertex " + std::to_string(v) + " of " +
-                                               std::to_string(nv));
+      if (v >= nv)
+        throw std::invalid_argument("repair_mesh: a triangle uses vertex " + std::to_string(v) + " of " +
+                                    std::to_string(nv));
   Mesh m;
   m.positions = in.positions;
   m.comments = in.comments;
 
-  // Faces using a vertex twice, then repeats of an earlier face's vertex set (either orientation; the first stays).
+  // Faces using a vertex twice, then repeats of an earlier face's vertex set (either orientation; the first
+  // stays).
   std::vector<std::pair<std::array<uint32_t, 3>, uint32_t>> keyed;
   keyed.reserve(in.triangles.size());
   for (uint32_t f = 0; f < in.triangles.size(); ++f) {
@@ -204,18 +209,20 @@ Mesh repair_mesh(const Mesh& in, RepairReport* report) {
                      std::to_string(check.inconsistent_edges) + " edge(s), e.g. the two faces of edge " +
                      edge_name(check.first_inconsistent_edge) + " traverse it the same way)");
 
-  // Pinched vertices (several fans of faces meeting at one vertex, every edge manifold): each fan after the first gets
-  // its own copy of the vertex. The surface is unchanged; its topology becomes a manifold's.
+  // Pinched vertices (several fans of faces meeting at one vertex, every edge manifold): each fan after the
+  // first gets its own copy of the vertex. The surface is unchanged; its topology becomes a manifold's.
   if (check.non_manifold_vertices) r.pinched_vertices_split = split_pinched_vertices(m);
 
-  // Zero-area slivers: removing one would open a hole that a fan would refill with zero-area triangles, so flip.
+  // Zero-area slivers: removing one would open a hole that a fan would refill with zero-area triangles, so
+  // flip.
   if (check.zero_area_faces) {
     const double eps2 = 2e-14 * check.diagonal * check.diagonal;  // as validate_mesh()
     r.zero_area_flipped = flip_zero_area_faces(m, eps2);
     const MeshReport after = validate_mesh(m);
     if (after.zero_area_faces)
-      r.notes.push_back(std::to_string(after.zero_area_faces) +
-                        " zero-area face(s) kept: no safe flip removes them (coincident vertices or a boundary)");
+      r.notes.push_back(
+          std::to_string(after.zero_area_faces) +
+          " zero-area face(s) kept: no safe flip removes them (coincident vertices or a boundary)");
   }
 
   // Boundary edges in face direction: half-edges whose reverse no face has. On a manifold, oriented mesh each
@@ -261,7 +268,8 @@ Mesh repair_mesh(const Mesh& in, RepairReport* report) {
     for (uint32_t u : loop) c += m.positions[u];
     m.positions.push_back(c * (1.0 / static_cast<double>(loop.size())));
     const uint32_t centre = static_cast<uint32_t>(m.positions.size() - 1);
-    for (size_t i = 0; i < loop.size(); ++i) m.triangles.push_back({centre, loop[(i + 1) % loop.size()], loop[i]});
+    for (size_t i = 0; i < loop.size(); ++i)
+      m.triangles.push_back({centre, loop[(i + 1) % loop.size()], loop[i]});
     ++r.holes_filled;
     r.fill_triangles += loop.size();
   }

@@ -28,8 +28,8 @@ struct UnionFind {
 struct HalfEdge {
   uint32_t lo, hi;  // sorted vertex pair
   uint32_t face;
-  uint8_t corner;   // the edge runs from corner to corner + 1
-  bool forward;     // from lo to hi
+  uint8_t corner;  // the edge runs from corner to corner + 1
+  bool forward;    // from lo to hi
 };
 
 }  // namespace
@@ -50,8 +50,9 @@ MeshReport validate_mesh(const Mesh& m) {
   r.faces = nf;
   for (const Tri& t : m.triangles)
     for (uint32_t v : t)
-      if (v >= nv) throw std::invalid_argument("validate_mesh: a triangle uses vertex " + std::to_string(v) +
-                                               " of " + std::to_string(nv));
+      if (v >= nv)
+        throw std::invalid_argument("validate_mesh: a triangle uses vertex " + std::to_string(v) + " of " +
+                                    std::to_string(nv));
   // The first few offenders of each kind, for messages; the text is only built while there is room for it.
   enum Kind { kRepeated, kZeroArea, kDuplicate, kInconsistent, kNonManifoldEdge, kNonManifoldVertex, kKinds };
   constexpr int kPerKind = 3;
@@ -82,8 +83,11 @@ MeshReport validate_mesh(const Mesh& m) {
     for (uint32_t v : t) referenced[v] = 1;
     if (t[0] == t[1] || t[1] == t[2] || t[0] == t[2]) {
       ++r.repeated_index_faces;
-      if (want_example(kRepeated)) example(kRepeated, "face " + std::to_string(f) + " uses vertex " + std::to_string(t[0] == t[1] || t[0] == t[2] ? t[0] : t[1]) + " twice");
-    } else if (norm(triangle_normal_area2(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]])) <= 2 * area_eps) {
+      if (want_example(kRepeated))
+        example(kRepeated, "face " + std::to_string(f) + " uses vertex " +
+                               std::to_string(t[0] == t[1] || t[0] == t[2] ? t[0] : t[1]) + " twice");
+    } else if (norm(triangle_normal_area2(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]])) <=
+               2 * area_eps) {
       ++r.zero_area_faces;
       if (want_example(kZeroArea)) example(kZeroArea, "face " + std::to_string(f) + " has zero area");
     }
@@ -96,7 +100,9 @@ MeshReport validate_mesh(const Mesh& m) {
     if (sorted_faces[i][0] == sorted_faces[i - 1][0] && sorted_faces[i][1] == sorted_faces[i - 1][1] &&
         sorted_faces[i][2] == sorted_faces[i - 1][2]) {
       ++r.duplicate_faces;
-      if (want_example(kDuplicate)) example(kDuplicate, "face " + std::to_string(sorted_faces[i][3]) + " repeats face " + std::to_string(sorted_faces[i - 1][3]));
+      if (want_example(kDuplicate))
+        example(kDuplicate, "face " + std::to_string(sorted_faces[i][3]) + " repeats face " +
+                                std::to_string(sorted_faces[i - 1][3]));
     }
   for (uint8_t u : referenced) r.unreferenced_vertices += !u;
 
@@ -115,7 +121,7 @@ MeshReport validate_mesh(const Mesh& m) {
   UnionFind faces(nf);
   UnionFind corners(3 * nf);  // corners of one vertex joined across manifold edges: fans
   std::vector<uint32_t> boundary_from, boundary_to, boundary_face;  // boundary edges in face direction
-  std::vector<uint32_t> edge_component;              // one face per edge, for per-component edge counts
+  std::vector<uint32_t> edge_component;  // one face per edge, for per-component edge counts
   auto corner_of = [&](uint32_t f, uint32_t v) {
     for (uint32_t k = 0; k < 3; ++k)
       if (m.triangles[f][k] == v) return 3 * f + k;
@@ -138,18 +144,26 @@ MeshReport validate_mesh(const Mesh& m) {
       if (he[i].forward == he[i + 1].forward) {
         if (!r.inconsistent_edges) r.first_inconsistent_edge = {he[i].lo, he[i].hi};
         ++r.inconsistent_edges;
-        if (want_example(kInconsistent)) example(kInconsistent, "faces " + std::to_string(he[i].face) + " and " + std::to_string(he[i + 1].face) +
-                " traverse edge (" + std::to_string(he[i].lo) + ", " + std::to_string(he[i].hi) + ") the same way");
+        if (want_example(kInconsistent))
+          example(kInconsistent, "faces " + std::to_string(he[i].face) + " and " +
+                                     std::to_string(he[i + 1].face) + " traverse edge (" +
+                                     std::to_string(he[i].lo) + ", " + std::to_string(he[i].hi) +
+                                     ") the same way");
       }
-      for (uint32_t v : {he[i].lo, he[i].hi}) corners.unite(corner_of(he[i].face, v), corner_of(he[i + 1].face, v));
+      for (uint32_t v : {he[i].lo, he[i].hi})
+        corners.unite(corner_of(he[i].face, v), corner_of(he[i + 1].face, v));
     } else {
       if (!r.non_manifold_edges) r.first_non_manifold_edge = {he[i].lo, he[i].hi};
       ++r.non_manifold_edges;
-      if (want_example(kNonManifoldEdge)) example(kNonManifoldEdge, "edge (" + std::to_string(he[i].lo) + ", " + std::to_string(he[i].hi) + ") has " + std::to_string(n) + " faces");
-      // Faces around a vertex that meet at an edge belong to one fan, even at a non-manifold edge: a vertex is only
-      // called non-manifold for a pinch (as MANIFEST.md counts them); the edge is reported on its own.
+      if (want_example(kNonManifoldEdge))
+        example(kNonManifoldEdge, "edge (" + std::to_string(he[i].lo) + ", " + std::to_string(he[i].hi) +
+                                      ") has " + std::to_string(n) + " faces");
+      // Faces around a vertex that meet at an edge belong to one fan, even at a non-manifold edge: a vertex
+      // is only called non-manifold for a pinch (as MANIFEST.md counts them); the edge is reported on its
+      // own.
       for (size_t k = i + 1; k < j; ++k)
-        for (uint32_t v : {he[i].lo, he[i].hi}) corners.unite(corner_of(he[i].face, v), corner_of(he[k].face, v));
+        for (uint32_t v : {he[i].lo, he[i].hi})
+          corners.unite(corner_of(he[i].face, v), corner_of(he[k].face, v));
     }
     i = j;
   }
@@ -170,16 +184,20 @@ MeshReport validate_mesh(const Mesh& m) {
     if (fan_count[v] > 1) {
       if (!r.non_manifold_vertices) r.first_non_manifold_vertex = v;
       ++r.non_manifold_vertices;
-      if (want_example(kNonManifoldVertex)) example(kNonManifoldVertex, "vertex " + std::to_string(v) + " joins " + std::to_string(fan_count[v]) + " fans of faces (pinched)");
+      if (want_example(kNonManifoldVertex))
+        example(kNonManifoldVertex, "vertex " + std::to_string(v) + " joins " + std::to_string(fan_count[v]) +
+                                        " fans of faces (pinched)");
     }
 
-  // Boundary loops: follow boundary edges head to tail; a vertex with several outgoing boundary edges (pinched)
-  // still ends every loop, since each edge is used once. loop_face keeps a face of each loop (for its component).
+  // Boundary loops: follow boundary edges head to tail; a vertex with several outgoing boundary edges
+  // (pinched) still ends every loop, since each edge is used once. loop_face keeps a face of each loop (for
+  // its component).
   std::vector<uint32_t> loop_face;
   {
     std::vector<uint32_t> order(boundary_from.size());
     std::iota(order.begin(), order.end(), 0u);
-    std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) { return boundary_from[a] < boundary_from[b]; });
+    std::sort(order.begin(), order.end(),
+              [&](uint32_t a, uint32_t b) { return boundary_from[a] < boundary_from[b]; });
     std::vector<uint8_t> used(boundary_from.size(), 0);
     auto next_edge = [&](uint32_t v) -> int64_t {
       auto it = std::lower_bound(order.begin(), order.end(), v,
@@ -213,20 +231,23 @@ MeshReport validate_mesh(const Mesh& m) {
     comp_of_face[f] = static_cast<uint32_t>(comp_index[root]);
     ++comps[comp_of_face[f]].faces;
   }
-  // A vertex may belong to several components (two surfaces touching at a point): count (component, vertex) pairs,
-  // and fans of faces per pair, so that each component is judged on its own.
+  // A vertex may belong to several components (two surfaces touching at a point): count (component, vertex)
+  // pairs, and fans of faces per pair, so that each component is judged on its own.
   {
     struct CornerKey {
       uint32_t comp, vertex, fan;
       bool operator<(const CornerKey& o) const {
         return comp != o.comp ? comp < o.comp : vertex != o.vertex ? vertex < o.vertex : fan < o.fan;
       }
-      bool operator==(const CornerKey& o) const { return comp == o.comp && vertex == o.vertex && fan == o.fan; }
+      bool operator==(const CornerKey& o) const {
+        return comp == o.comp && vertex == o.vertex && fan == o.fan;
+      }
     };
     std::vector<CornerKey> keys;
     keys.reserve(3 * nf);
     for (uint32_t f = 0; f < nf; ++f)
-      for (uint32_t k = 0; k < 3; ++k) keys.push_back({comp_of_face[f], m.triangles[f][k], corners.find(3 * f + k)});
+      for (uint32_t k = 0; k < 3; ++k)
+        keys.push_back({comp_of_face[f], m.triangles[f][k], corners.find(3 * f + k)});
     std::sort(keys.begin(), keys.end());
     keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
     for (size_t i = 0; i < keys.size();) {
@@ -242,7 +263,8 @@ MeshReport validate_mesh(const Mesh& m) {
   for (size_t i = 0; i < he.size();) {
     size_t j = i + 1;
     while (j < he.size() && he[j].lo == he[i].lo && he[j].hi == he[i].hi) ++j;
-    if (j - i > 2 || (j - i == 2 && he[i].forward == he[i + 1].forward)) comps[comp_of_face[he[i].face]].manifold = false;
+    if (j - i > 2 || (j - i == 2 && he[i].forward == he[i + 1].forward))
+      comps[comp_of_face[he[i].face]].manifold = false;
     i = j;
   }
   for (ComponentReport& c : comps) {
@@ -251,8 +273,10 @@ MeshReport validate_mesh(const Mesh& m) {
     c.genus = c.manifold && twice >= 0 && twice % 2 == 0 ? static_cast<int>(twice / 2) : -1;
   }
   // The whole mesh's V - E + F over referenced vertices (a vertex shared by two components counts once).
-  r.euler = static_cast<long>(nv - r.unreferenced_vertices) - static_cast<long>(r.edges) + static_cast<long>(nf);
-  std::sort(comps.begin(), comps.end(), [](const ComponentReport& a, const ComponentReport& b) { return a.faces > b.faces; });
+  r.euler =
+      static_cast<long>(nv - r.unreferenced_vertices) - static_cast<long>(r.edges) + static_cast<long>(nf);
+  std::sort(comps.begin(), comps.end(),
+            [](const ComponentReport& a, const ComponentReport& b) { return a.faces > b.faces; });
   r.components = comps.size();
   r.per_component = std::move(comps);
   return r;

@@ -1,11 +1,11 @@
-// A bounds-checked tokenizer over a file held in memory, for the ASCII formats. Every failure names the file and
-// the line.
+// A bounds-checked tokenizer over a file held in memory, for the ASCII formats. Every failure names the file
+// and the line.
 #pragma once
 
 #include <charconv>
 #include <cmath>
-#include <cstdlib>
 #include <cstdint>
+#include <cstdlib>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -71,7 +71,8 @@ class TextScanner {
   }
   std::string_view token(const char* what) {
     skip_space();
-    if (p_ >= end_) fail("unexpected end of file while reading " + std::string(what) + " (" + eof_hint_ + ")");
+    if (p_ >= end_)
+      fail("unexpected end of file while reading " + std::string(what) + " (" + eof_hint_ + ")");
     const char* s = p_;
     while (p_ < end_ && !is_space(*p_)) ++p_;
     return {s, static_cast<size_t>(p_ - s)};
@@ -106,7 +107,8 @@ class TextScanner {
     const char* b = t.data();
     if (!t.empty() && *b == '+') ++b;
     const auto r = std::from_chars(b, t.data() + t.size(), v);
-    if (r.ec == std::errc::result_out_of_range) fail("'" + std::string(t.substr(0, 40)) + "' is too large (" + what + ")");
+    if (r.ec == std::errc::result_out_of_range)
+      fail("'" + std::string(t.substr(0, 40)) + "' is too large (" + what + ")");
     if (r.ec != std::errc() || r.ptr != t.data() + t.size())
       fail("'" + std::string(t.substr(0, 40)) + "' is not an integer (" + what + ")");
     return v;
@@ -120,7 +122,9 @@ class TextScanner {
   const char* position() const { return p_; }
 
  private:
-  static bool is_space(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; }
+  static bool is_space(char c) {
+    return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v';
+  }
   const char* p_;
   const char* end_;
   std::string path_;

@@ -1,6 +1,6 @@
-// Hostile input: one small file per failure class and format (common/tests/data/hostile_*, written by generate.py).
-// Each must throw prm::InputError (prm::IoError for a missing file) whose message names the file and the problem,
-// without allocating for counts the file cannot hold.
+// Hostile input: one small file per failure class and format (common/tests/data/hostile_*, written by
+// generate.py). Each must throw prm::InputError (prm::IoError for a missing file) whose message names the
+// file and the problem, without allocating for counts the file cannot hold.
 #include <gtest/gtest.h>
 
 #include <cstdio>
@@ -20,7 +20,9 @@ struct HostileCase {
   std::vector<const char*> message;  // substrings the message must contain (besides the file name)
 };
 
-void PrintTo(const HostileCase& c, std::ostream* os) { *os << c.file; }
+void PrintTo(const HostileCase& c, std::ostream* os) {
+  *os << c.file;
+}
 
 class MeshIoHostile : public testing::TestWithParam<HostileCase> {};
 
@@ -34,18 +36,21 @@ TEST_P(MeshIoHostile, ThrowsInputErrorNamingFileAndProblem) {
   } catch (const InputError& e) {
     const std::string what = e.what();
     EXPECT_NE(what.find(path), std::string::npos) << what;
-    for (const char* m : c.message) EXPECT_NE(what.find(m), std::string::npos) << "'" << m << "' not in: " << what;
+    for (const char* m : c.message)
+      EXPECT_NE(what.find(m), std::string::npos) << "'" << m << "' not in: " << what;
   }
 }
 
 INSTANTIATE_TEST_SUITE_P(
     Truncated, MeshIoHostile,
     testing::Values(HostileCase{"hostile_truncated_binary.ply", {"face 3", "beyond the end of the file"}},
-                    HostileCase{"hostile_truncated_ascii.ply", {"unexpected end of file", "line 17", "counts do not match"}},
+                    HostileCase{"hostile_truncated_ascii.ply",
+                                {"unexpected end of file", "line 17", "counts do not match"}},
                     HostileCase{"hostile_no_end_header.ply", {"no end_header"}},
                     HostileCase{"hostile_truncated.off", {"only 49 bytes follow"}},
                     HostileCase{"hostile_truncated_binary.stl", {"264 bytes", "4 triangles (284 bytes)"}},
-                    HostileCase{"hostile_truncated_solid_header.stl", {"264 bytes", "4 triangles (284 bytes)"}},
+                    HostileCase{"hostile_truncated_solid_header.stl",
+                                {"264 bytes", "4 triangles (284 bytes)"}},
                     HostileCase{"hostile_truncated_ascii.stl", {"no endsolid"}},
                     HostileCase{"hostile_truncated.glb", {"malformed glTF"}}));
 
@@ -102,8 +107,7 @@ INSTANTIATE_TEST_SUITE_P(
                     HostileCase{"hostile_not_off.off", {"not an OFF file"}},
                     HostileCase{"hostile_no_faces.obj", {"no faces", "3 vertices"}},
                     HostileCase{"hostile_empty.ply", {"no end_header"}},
-                    HostileCase{"hostile_empty.obj", {"empty"}},
-                    HostileCase{"hostile_empty.off", {"empty"}},
+                    HostileCase{"hostile_empty.obj", {"empty"}}, HostileCase{"hostile_empty.off", {"empty"}},
                     HostileCase{"hostile_empty.stl", {"empty"}},
                     HostileCase{"hostile_empty.glb", {"empty"}}));
 
@@ -135,12 +139,12 @@ TEST(MeshIoHostileMisc, UnknownFormat) {
   std::remove(path.c_str());
 }
 
-// Every truncation of valid binary and text files is refused cleanly (or, at a record boundary where the file still
-// parses, accepted): never a crash, never another exception type. Run under ASan in CI.
+// Every truncation of valid binary and text files is refused cleanly (or, at a record boundary where the file
+// still parses, accepted): never a crash, never another exception type. Run under ASan in CI.
 TEST(MeshIoHostileMisc, EveryTruncationOfValidFiles) {
-  for (const char* name : {"tet_binary_le.ply", "tet_binary_be.ply", "tet_ascii.ply", "strips.ply", "tet_binary.stl",
-                           "tet_ascii.stl", "tet.off", "tet_coff.off", "cube_quads.obj", "tet.glb",
-                           "tet_transformed.gltf"}) {
+  for (const char* name :
+       {"tet_binary_le.ply", "tet_binary_be.ply", "tet_ascii.ply", "strips.ply", "tet_binary.stl",
+        "tet_ascii.stl", "tet.off", "tet_coff.off", "cube_quads.obj", "tet.glb", "tet_transformed.gltf"}) {
     std::ifstream in(test::data_path(name), std::ios::binary);
     const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     const std::string ext = std::string(name).substr(std::string(name).find_last_of('.'));
@@ -163,8 +167,8 @@ TEST(MeshIoHostileMisc, EveryTruncationOfValidFiles) {
 
 // Every byte of valid files flipped to a few values: never a crash, only InputError.
 TEST(MeshIoHostileMisc, EveryByteFlipped) {
-  for (const char* name : {"tet_binary_le.ply", "tet_ascii.ply", "strips.ply", "tet_binary.stl", "tet.off", "tet.glb",
-                           "cube_quads.obj"}) {
+  for (const char* name : {"tet_binary_le.ply", "tet_ascii.ply", "strips.ply", "tet_binary.stl", "tet.off",
+                           "tet.glb", "cube_quads.obj"}) {
     std::ifstream in(test::data_path(name), std::ios::binary);
     std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     const std::string ext = std::string(name).substr(std::string(name).find_last_of('.'));
@@ -191,7 +195,8 @@ TEST(MeshIoHostileMisc, EveryByteFlipped) {
 }
 
 TEST(MeshIoHostileMisc, HugePolygonIsFanTriangulatedQuickly) {
-  // One face with 200000 corners on a circle: ear clipping would be quadratic or worse, the reader falls back to a fan.
+  // One face with 200000 corners on a circle: ear clipping would be quadratic or worse, the reader falls back
+  // to a fan.
   const size_t n = 200000;
   std::string s = "OFF\n" + std::to_string(n) + " 1 0\n";
   for (size_t i = 0; i < n; ++i) {

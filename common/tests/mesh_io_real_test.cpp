@@ -1,9 +1,8 @@
-// The real meshes: every file of ../shared/meshes loads with the counts MANIFEST.md gives, bunny_zipper repairs to a
-// closed genus-0 manifold, and every file of CGAL's data/meshes is either read or refused with an InputError.
-// The data must be there (CI always has it): a missing file fails the test.
-#include <gtest/gtest.h>
-
+// The real meshes: every file of ../shared/meshes loads with the counts MANIFEST.md gives, bunny_zipper
+// repairs to a closed genus-0 manifold, and every file of CGAL's data/meshes is either read or refused with
+// an InputError. The data must be there (CI always has it): a missing file fails the test.
 #include <dirent.h>
+#include <gtest/gtest.h>
 
 #include <algorithm>
 #include <string>
@@ -24,7 +23,9 @@ struct SharedMesh {
   int genus;  // -1: none (non-manifold)
 };
 
-void PrintTo(const SharedMesh& m, std::ostream* os) { *os << m.file; }
+void PrintTo(const SharedMesh& m, std::ostream* os) {
+  *os << m.file;
+}
 
 class MeshIoShared : public testing::TestWithParam<SharedMesh> {};
 
@@ -50,18 +51,17 @@ TEST_P(MeshIoShared, LoadWithManifestCounts) {
 }
 
 // MANIFEST.md: vertices in the file, referenced vertices, faces, boundary loops, genus.
-INSTANTIATE_TEST_SUITE_P(
-    Manifest, MeshIoShared,
-    testing::Values(SharedMesh{"horse.ply", 48485, 48485, 96966, 0, 0},
-                    SharedMesh{"venus.off", 50002, 50002, 100000, 0, 0},
-                    SharedMesh{"feline.off", 49864, 49864, 99732, 0, 2},
-                    SharedMesh{"bunny_zipper.ply", 35947, 34834, 69451, 5, 0},
-                    SharedMesh{"igea.ply", 134345, 134345, 268686, 0, 0},
-                    SharedMesh{"rocker-arm.off", 10044, 10044, 20088, 0, 1},
-                    SharedMesh{"fandisk.obj", 6475, 6475, 12946, 0, 0},
-                    SharedMesh{"feline_5k.obj", 4998, 4998, 10000, 0, 2},
-                    SharedMesh{"spot.obj", 2930, 2930, 5856, 0, 0},
-                    SharedMesh{"rabbit_1k_decimated.off", 1001, 1001, 2000, 0, -1}));
+INSTANTIATE_TEST_SUITE_P(Manifest, MeshIoShared,
+                         testing::Values(SharedMesh{"horse.ply", 48485, 48485, 96966, 0, 0},
+                                         SharedMesh{"venus.off", 50002, 50002, 100000, 0, 0},
+                                         SharedMesh{"feline.off", 49864, 49864, 99732, 0, 2},
+                                         SharedMesh{"bunny_zipper.ply", 35947, 34834, 69451, 5, 0},
+                                         SharedMesh{"igea.ply", 134345, 134345, 268686, 0, 0},
+                                         SharedMesh{"rocker-arm.off", 10044, 10044, 20088, 0, 1},
+                                         SharedMesh{"fandisk.obj", 6475, 6475, 12946, 0, 0},
+                                         SharedMesh{"feline_5k.obj", 4998, 4998, 10000, 0, 2},
+                                         SharedMesh{"spot.obj", 2930, 2930, 5856, 0, 0},
+                                         SharedMesh{"rabbit_1k_decimated.off", 1001, 1001, 2000, 0, -1}));
 
 TEST(MeshIoSharedDetails, BunnyZipper) {
   ReadReport rep;
@@ -168,7 +168,8 @@ TEST(MeshIoCgal, EveryMeshRepairsToAClosedManifoldOrIsRefused) {
       const MeshReport r = validate_mesh(repair_mesh(in, &rep));
       EXPECT_TRUE(r.closed() && r.manifold() && r.oriented()) << n;
     } catch (const InputError& e) {
-      // Only the files whose faces were shuffled to random orientations (CGAL's orientation tests) are refused.
+      // Only the files whose faces were shuffled to random orientations (CGAL's orientation tests) are
+      // refused.
       EXPECT_NE(n.find("shuffled"), std::string::npos) << n << ": " << e.what();
       EXPECT_NE(std::string(e.what()).find("not consistently oriented"), std::string::npos) << e.what();
     }

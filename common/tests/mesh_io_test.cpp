@@ -1,4 +1,7 @@
-// Every reader on small hand-made files (common/tests/data, written by generate.py), and write -> read round trips.
+// Every reader on small hand-made files (common/tests/data, written by generate.py), and write -> read round
+// trips.
+#include "prm/mesh_io.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -8,7 +11,6 @@
 
 #include "mesh_io_test_util.h"
 #include "prm/error.h"
-#include "prm/mesh_io.h"
 #include "prm/mesh_validate.h"
 
 namespace prm {
@@ -99,7 +101,7 @@ TEST(MeshIoPly, PolygonsAreTriangulated) {
   ReadReport rep;
   const Mesh m = read_mesh(data_path("polygons.ply"), {}, &rep);
   EXPECT_EQ(rep.polygons_triangulated, 2u);
-  EXPECT_EQ(m.num_faces(), 2u + 3u);  // a quad and a pentagon
+  EXPECT_EQ(m.num_faces(), 2u + 3u);             // a quad and a pentagon
   EXPECT_NEAR(test::area(m), 1.0 + 2.5, 1e-12);  // the pentagon (1,0) (2,0) (3,1) (2,2) (1,1) has area 2.5
 }
 
@@ -196,8 +198,8 @@ TEST(MeshIoStl, WeldTolerance) {
 }
 
 TEST(MeshIoWeld, HashGridMatchesBruteForce) {
-  // Random points on a coarse lattice plus jitter: the grid must find every pair within the tolerance that the
-  // first-come rule would join.
+  // Random points on a coarse lattice plus jitter: the grid must find every pair within the tolerance that
+  // the first-come rule would join.
   Mesh m;
   uint32_t seed = 12345;
   auto rnd = [&] {
@@ -205,7 +207,8 @@ TEST(MeshIoWeld, HashGridMatchesBruteForce) {
     return (seed >> 8) / 16777216.0;
   };
   for (int i = 0; i < 600; ++i)
-    m.positions.push_back({std::floor(rnd() * 8) + rnd() * 1e-3, std::floor(rnd() * 8), std::floor(rnd() * 8)});
+    m.positions.push_back(
+        {std::floor(rnd() * 8) + rnd() * 1e-3, std::floor(rnd() * 8), std::floor(rnd() * 8)});
   for (uint32_t i = 0; i + 2 < m.positions.size(); i += 3) m.triangles.push_back({i, i + 1, i + 2});
   const std::string path = test::temp_path("weld.ply");
   WriteOptions w;
@@ -229,8 +232,10 @@ TEST(MeshIoWeld, HashGridMatchesBruteForce) {
         break;
       }
     }
-    if (joined) ++merged;
-    else reps.push_back(v);
+    if (joined)
+      ++merged;
+    else
+      reps.push_back(v);
   }
   EXPECT_EQ(rep.vertices_welded, merged);
   EXPECT_EQ(welded.num_vertices(), reps.size());
@@ -253,7 +258,8 @@ TEST(MeshIoGltf, NodeTransformsAreApplied) {
 
 TEST(MeshIoGltf, GlbAndInstancedMirroredMeshKeepOutwardFaces) {
   expect_tetrahedron(read_mesh(data_path("tet.glb")), "tet.glb");
-  expect_tetrahedron(read_mesh(data_path("tet_external.gltf")), "tet_external.gltf");  // buffer in a .bin beside it
+  expect_tetrahedron(read_mesh(data_path("tet_external.gltf")),
+                     "tet_external.gltf");  // buffer in a .bin beside it
   const Mesh m = read_mesh(data_path("tet_instanced.glb"));
   EXPECT_EQ(m.num_vertices(), 8u);
   EXPECT_EQ(m.num_faces(), 8u);
@@ -269,7 +275,8 @@ TEST(MeshIoFormat, ByExtensionAndByContent) {
   EXPECT_EQ(format_from_path("x.glb"), MeshFormat::Glb);
   EXPECT_EQ(format_from_path("dir.ply/mesh"), MeshFormat::Auto);
   // Files without a known extension are recognised from their first bytes (binary STL from its size).
-  for (const char* name : {"tet_ascii.ply", "tet.off", "tet_binary.stl", "tet_ascii.stl", "cube_quads.obj", "tet.glb"}) {
+  for (const char* name :
+       {"tet_ascii.ply", "tet.off", "tet_binary.stl", "tet_ascii.stl", "cube_quads.obj", "tet.glb"}) {
     const std::string src = data_path(name), dst = test::temp_path(std::string(name) + ".mesh");
     {
       std::ifstream in(src, std::ios::binary);
@@ -283,7 +290,8 @@ TEST(MeshIoFormat, ByExtensionAndByContent) {
   }
 }
 
-// ------------------------------------------------------------------------------------------------ round trips
+// ------------------------------------------------------------------------------------------------ round
+// trips
 
 Mesh labelled_mesh() {
   Mesh m = test::torus(6, 5);
@@ -311,7 +319,8 @@ Mesh labelled_mesh() {
   m.set_face_property("code", ScalarType::UInt16, std::vector<double>(m.num_faces(), 65535));
   m.set_face_property("big", ScalarType::UInt32, std::vector<double>(m.num_faces(), 4294967295.0));
   m.set_face_property("small", ScalarType::Int16, std::vector<double>(m.num_faces(), -32768));
-  m.comments = {"prm-frame bits 12 origin 0.10000000000000001 -2 3 step 0.001 grid 7", "prm-relief 0 axis 4", ""};
+  m.comments = {"prm-frame bits 12 origin 0.10000000000000001 -2 3 step 0.001 grid 7", "prm-relief 0 axis 4",
+                ""};
   return m;
 }
 

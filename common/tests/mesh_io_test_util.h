@@ -1,4 +1,5 @@
-// Helpers shared by the mesh I/O, validation and repair tests: paths of the test data and small generated meshes.
+// Helpers shared by the mesh I/O, validation and repair tests: paths of the test data and small generated
+// meshes.
 #pragma once
 
 #include <cmath>
@@ -9,10 +10,16 @@
 
 namespace prm::test {
 
-inline std::string data_path(const std::string& name) { return std::string(PRM_SOURCE_DIR) + "/common/tests/data/" + name; }
-inline std::string shared_mesh(const std::string& name) { return std::string(PRM_SHARED_MESHES) + "/" + name; }
+inline std::string data_path(const std::string& name) {
+  return std::string(PRM_SOURCE_DIR) + "/common/tests/data/" + name;
+}
+inline std::string shared_mesh(const std::string& name) {
+  return std::string(PRM_SHARED_MESHES) + "/" + name;
+}
 // A scratch file in the build tree, unique per test name.
-inline std::string temp_path(const std::string& name) { return std::string(PRM_BINARY_DIR) + "/mesh_io_test_" + name; }
+inline std::string temp_path(const std::string& name) {
+  return std::string(PRM_BINARY_DIR) + "/mesh_io_test_" + name;
+}
 
 // A tetrahedron with outward faces, placed at `offset`.
 inline Mesh tetrahedron(double offset = 0) {
@@ -36,8 +43,8 @@ inline Mesh torus(uint32_t n = 12, uint32_t m = 8, double big = 2, double small 
   for (uint32_t i = 0; i < n; ++i)
     for (uint32_t j = 0; j < m; ++j) {
       const double u = 2 * pi * i / n, v = 2 * pi * j / m;
-      t.positions.push_back({(big + small * std::cos(v)) * std::cos(u), (big + small * std::cos(v)) * std::sin(u),
-                             small * std::sin(v)});
+      t.positions.push_back({(big + small * std::cos(v)) * std::cos(u),
+                             (big + small * std::cos(v)) * std::sin(u), small * std::sin(v)});
     }
   auto id = [&](uint32_t i, uint32_t j) { return (i % n) * m + (j % m); };
   for (uint32_t i = 0; i < n; ++i)
@@ -69,7 +76,8 @@ inline double signed_volume(const Mesh& m) {
   double v = 0;
   for (const Tri& t : m.triangles) {
     const Vec3 &a = m.positions[t[0]], &b = m.positions[t[1]], &c = m.positions[t[2]];
-    v += a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) + a[2] * (b[0] * c[1] - b[1] * c[0]);
+    v += a[0] * (b[1] * c[2] - b[2] * c[1]) - a[1] * (b[0] * c[2] - b[2] * c[0]) +
+         a[2] * (b[0] * c[1] - b[1] * c[0]);
   }
   return v / 6;
 }

@@ -1,9 +1,10 @@
 // repair_mesh on generated meshes: hole fans, face removals, pinch splitting, sliver flips, refusals.
+#include "prm/mesh_repair.h"
+
 #include <gtest/gtest.h>
 
 #include "mesh_io_test_util.h"
 #include "prm/error.h"
-#include "prm/mesh_repair.h"
 #include "prm/mesh_validate.h"
 
 namespace prm {
@@ -52,7 +53,8 @@ TEST(MeshRepair, ClosedCleanMeshIsUnchanged) {
   const Mesh m = repair_mesh(t, &rep);
   EXPECT_EQ(m.positions, t.positions);
   EXPECT_EQ(m.triangles, t.triangles);
-  EXPECT_EQ(rep.holes_filled + rep.duplicate_removed + rep.repeated_index_removed + rep.unreferenced_removed, 0u);
+  EXPECT_EQ(rep.holes_filled + rep.duplicate_removed + rep.repeated_index_removed + rep.unreferenced_removed,
+            0u);
 }
 
 TEST(MeshRepair, RepeatedIndexAndDuplicateFacesAreRemoved) {
@@ -110,8 +112,8 @@ TEST(MeshRepair, PinchedBoundaryVertexIsSplitBeforeHolesAreFilled) {
 }
 
 TEST(MeshRepair, ZeroAreaSliverIsFlippedAway) {
-  // A tetrahedron whose face (0, 1, 3) is split at the midpoint 4 of edge (0, 1); the T-junction is closed by the
-  // zero-area face (0, 1, 4).
+  // A tetrahedron whose face (0, 1, 3) is split at the midpoint 4 of edge (0, 1); the T-junction is closed by
+  // the zero-area face (0, 1, 4).
   Mesh m = test::tetrahedron();
   m.positions.push_back({0.5, 0, 0});
   m.triangles = {{0, 2, 1}, {0, 4, 3}, {4, 1, 3}, {0, 3, 2}, {1, 2, 3}, {0, 1, 4}};

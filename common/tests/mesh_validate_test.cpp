@@ -1,8 +1,9 @@
 // validate_mesh on generated meshes with known answers.
+#include "prm/mesh_validate.h"
+
 #include <gtest/gtest.h>
 
 #include "mesh_io_test_util.h"
-#include "prm/mesh_validate.h"
 
 namespace prm {
 namespace {
@@ -121,20 +122,21 @@ TEST(MeshValidate, PinchedVertex) {
 
 TEST(MeshValidate, InconsistentOrientationAndDegenerateAndDuplicateFaces) {
   Mesh m = test::tetrahedron();
-  std::swap(m.triangles[3][1], m.triangles[3][2]);  // one face flipped: its three edges are traversed twice the same way
+  std::swap(m.triangles[3][1],
+            m.triangles[3][2]);  // one face flipped: its three edges are traversed twice the same way
   MeshReport r = validate_mesh(m);
   EXPECT_EQ(r.inconsistent_edges, 3u);
   EXPECT_FALSE(r.oriented());
   EXPECT_EQ(r.per_component.at(0).genus, -1);
 
   m = test::tetrahedron();
-  m.positions.push_back({0.5, 0, 0});     // 4: on edge (0, 1)
-  m.positions.push_back({0, 0, 0});       // 5: coincides with 0
-  m.triangles.push_back({0, 1, 4});       // zero area, collinear
-  m.triangles.push_back({0, 5, 2});       // zero area, coincident corners
-  m.triangles.push_back({1, 1, 2});       // repeated index
-  m.triangles.push_back({1, 3, 0});       // duplicate of {0, 1, 3} (same orientation)
-  m.triangles.push_back({0, 3, 1});       // duplicate, reversed
+  m.positions.push_back({0.5, 0, 0});  // 4: on edge (0, 1)
+  m.positions.push_back({0, 0, 0});    // 5: coincides with 0
+  m.triangles.push_back({0, 1, 4});    // zero area, collinear
+  m.triangles.push_back({0, 5, 2});    // zero area, coincident corners
+  m.triangles.push_back({1, 1, 2});    // repeated index
+  m.triangles.push_back({1, 3, 0});    // duplicate of {0, 1, 3} (same orientation)
+  m.triangles.push_back({0, 3, 1});    // duplicate, reversed
   r = validate_mesh(m);
   EXPECT_EQ(r.zero_area_faces, 2u);
   EXPECT_EQ(r.repeated_index_faces, 1u);

@@ -1,5 +1,5 @@
-// prm info FILE [--json]: what a mesh file holds and what is wrong with it; on a .prm stream, its header and the
-// bytes of every section (prm_stream_info.cpp).
+// prm info FILE [--json]: what a mesh file holds and what is wrong with it; on a .prm stream, its header and
+// the bytes of every section (prm_stream_info.cpp).
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
@@ -19,11 +19,14 @@ void add_info_command(CLI::App& root) {
     bool weld_all = false, no_weld = false;
   };
   auto opt = std::make_shared<Options>();
-  cmd->add_option("input", opt->input, "Mesh file (OBJ, PLY, OFF, STL, glTF, GLB) or .prm stream")->required();
+  cmd->add_option("input", opt->input, "Mesh file (OBJ, PLY, OFF, STL, glTF, GLB) or .prm stream")
+      ->required();
   cmd->add_flag("--json", opt->json, "Print the report as one JSON object");
-  cmd->add_option("--weld-tolerance", opt->weld, "Weld vertices closer than this (model units; default: exact)")
+  cmd->add_option("--weld-tolerance", opt->weld,
+                  "Weld vertices closer than this (model units; default: exact)")
       ->check(CLI::NonNegativeNumber);
-  cmd->add_flag("--weld", opt->weld_all, "Weld coincident vertices in every format (default: STL and glTF only)");
+  cmd->add_flag("--weld", opt->weld_all,
+                "Weld coincident vertices in every format (default: STL and glTF only)");
   cmd->add_flag("--no-weld", opt->no_weld, "Never weld");
   cmd->callback([opt] {
     if (is_prm_stream_path(opt->input)) {
@@ -40,8 +43,12 @@ void add_info_command(CLI::App& root) {
     if (opt->json) {
       nlohmann::json comps = nlohmann::json::array();
       for (const ComponentReport& c : r.per_component)
-        comps.push_back({{"vertices", c.vertices}, {"faces", c.faces}, {"edges", c.edges},
-                         {"boundary_loops", c.boundary_loops}, {"euler", c.euler}, {"manifold", c.manifold},
+        comps.push_back({{"vertices", c.vertices},
+                         {"faces", c.faces},
+                         {"edges", c.edges},
+                         {"boundary_loops", c.boundary_loops},
+                         {"euler", c.euler},
+                         {"manifold", c.manifold},
                          {"genus", c.genus < 0 ? nlohmann::json(nullptr) : nlohmann::json(c.genus)}});
       nlohmann::json j = {
           {"file", opt->input},
@@ -85,25 +92,26 @@ void add_info_command(CLI::App& root) {
     if (rr.strip_triangles) std::printf(", %zu triangles from strips", rr.strip_triangles);
     if (rr.vertices_welded) std::printf(", %zu vertices welded", rr.vertices_welded);
     if (rr.unreferenced_dropped) std::printf(", %zu unreferenced vertices dropped", rr.unreferenced_dropped);
-    if (rr.degenerate_dropped) std::printf(", %zu faces with a repeated vertex dropped", rr.degenerate_dropped);
+    if (rr.degenerate_dropped)
+      std::printf(", %zu faces with a repeated vertex dropped", rr.degenerate_dropped);
     std::printf("\n");
     for (const std::string& n : rr.notes) std::printf("  note: %s\n", n.c_str());
-    std::printf("  mesh: %zu vertices, %zu faces, %zu edges, %zu component(s), Euler characteristic %ld\n", r.vertices,
-                r.faces, r.edges, r.components, r.euler);
+    std::printf("  mesh: %zu vertices, %zu faces, %zu edges, %zu component(s), Euler characteristic %ld\n",
+                r.vertices, r.faces, r.edges, r.components, r.euler);
     std::printf("  %s, %s, %s", r.closed() ? "closed" : "open", r.manifold() ? "manifold" : "NOT manifold",
                 r.oriented() ? "consistently oriented" : "NOT consistently oriented");
     if (r.genus_sum() >= 0) std::printf(", genus %d", r.genus_sum());
     std::printf("\n");
-    std::printf("  boundary: %zu edges in %zu loop(s); non-manifold: %zu edges, %zu vertices\n", r.boundary_edges,
-                r.boundary_loops, r.non_manifold_edges, r.non_manifold_vertices);
-    std::printf("  faces: %zu with a repeated vertex, %zu with zero area, %zu duplicates\n", r.repeated_index_faces,
-                r.zero_area_faces, r.duplicate_faces);
+    std::printf("  boundary: %zu edges in %zu loop(s); non-manifold: %zu edges, %zu vertices\n",
+                r.boundary_edges, r.boundary_loops, r.non_manifold_edges, r.non_manifold_vertices);
+    std::printf("  faces: %zu with a repeated vertex, %zu with zero area, %zu duplicates\n",
+                r.repeated_index_faces, r.zero_area_faces, r.duplicate_faces);
     if (r.components > 1) {
       std::printf("  components (largest first):\n");
       for (size_t c = 0; c < r.per_component.size() && c < 10; ++c) {
         const ComponentReport& k = r.per_component[c];
-        std::printf("    %zu: %zu vertices, %zu faces, %zu boundary loop(s), Euler %ld", c, k.vertices, k.faces,
-                    k.boundary_loops, k.euler);
+        std::printf("    %zu: %zu vertices, %zu faces, %zu boundary loop(s), Euler %ld", c, k.vertices,
+                    k.faces, k.boundary_loops, k.euler);
         if (k.genus >= 0) std::printf(", genus %d", k.genus);
         std::printf("\n");
       }

@@ -1,5 +1,7 @@
-// prm repair IN -o OUT [--json]: removes faces with a repeated vertex and duplicate faces, closes every hole with a
-// fan around its centroid (the paper's treatment of the bunny). Refuses non-manifold input.
+// prm repair IN -o OUT [--json]: removes faces with a repeated vertex and duplicate faces, splits pinched
+// vertices, flips away zero-area slivers, closes every hole with a fan around its centroid (paper §4, the
+// bunny). Refuses edges with three or more faces and inconsistent orientation
+// (common/include/prm/mesh_repair.h).
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
@@ -12,7 +14,11 @@
 namespace prm::cli {
 
 void add_repair_command(CLI::App& root) {
-  auto* cmd = root.add_subcommand("repair", "Close the holes of a manifold mesh and drop degenerate faces");
+  auto* cmd = root.add_subcommand(
+      "repair",
+      "Make a closed manifold: drop degenerate and duplicate faces, split pinched vertices, "
+      "close every hole with a fan around its centroid (refuses edges with 3+ faces and "
+      "inconsistent orientation)");
   struct Options {
     std::string input, output;
     bool json = false;
@@ -34,30 +40,34 @@ void add_repair_command(CLI::App& root) {
     write_mesh(out, opt->output);
     const MeshReport after = validate_mesh(out);
     if (opt->json) {
-      nlohmann::json j = {{"input", opt->input},
-                          {"output", opt->output},
-                          {"unreferenced_dropped_on_read", rr.unreferenced_dropped},
-                          {"repeated_index_removed", rep.repeated_index_removed},
-                          {"duplicate_removed", rep.duplicate_removed},
-                          {"pinched_vertices_split", rep.pinched_vertices_split},
-                          {"zero_area_flipped", rep.zero_area_flipped},
-                          {"holes_filled", rep.holes_filled},
-                          {"fill_triangles", rep.fill_triangles},
-                          {"notes", rep.notes},
-                          {"result",
-                           {{"vertices", after.vertices},
-                            {"faces", after.faces},
-                            {"closed", after.closed()},
-                            {"manifold", after.manifold()},
-                            {"oriented", after.oriented()},
-                            {"genus", after.genus_sum() < 0 ? nlohmann::json(nullptr) : nlohmann::json(after.genus_sum())}}}};
+      nlohmann::json j = {
+          {"input", opt->input},
+          {"output", opt->output},
+          {"unreferenced_dropped_on_read", rr.unreferenced_dropped},
+          {"repeated_index_removed", rep.repeated_index_removed},
+          {"duplicate_removed", rep.duplicate_removed},
+          {"pinched_vertices_split", rep.pinched_vertices_split},
+          {"zero_area_flipped", rep.zero_area_flipped},
+          {"holes_filled", rep.holes_filled},
+          {"fill_triangles", rep.fill_triangles},
+          {"notes", rep.notes},
+          {"result",
+           {{"vertices", after.vertices},
+            {"faces", after.faces},
+            {"closed", after.closed()},
+            {"manifold", after.manifold()},
+            {"oriented", after.oriented()},
+            {"genus", after.genus_sum() < 0 ? nlohmann::json(nullptr) : nlohmann::json(after.genus_sum())}}}};
       std::printf("%s\n", j.dump().c_str());
       return;
     }
     std::printf("%s -> %s\n", opt->input.c_str(), opt->output.c_str());
-    if (rr.unreferenced_dropped) std::printf("  %zu unreferenced vertices dropped on reading\n", rr.unreferenced_dropped);
-    std::printf("  removed %zu faces with a repeated vertex and %zu duplicate faces; flipped away %zu zero-area faces\n",
-                rep.repeated_index_removed, rep.duplicate_removed, rep.zero_area_flipped);
+    if (rr.unreferenced_dropped)
+      std::printf("  %zu unreferenced vertices dropped on reading\n", rr.unreferenced_dropped);
+    std::printf(
+        "  removed %zu faces with a repeated vertex and %zu duplicate faces; flipped away %zu zero-area "
+        "faces\n",
+        rep.repeated_index_removed, rep.duplicate_removed, rep.zero_area_flipped);
     if (rep.pinched_vertices_split) std::printf("  split %zu pinched vertices\n", rep.pinched_vertices_split);
     std::printf("  closed %zu hole(s) with %zu triangles\n", rep.holes_filled, rep.fill_triangles);
     for (const std::string& n : rep.notes) std::printf("  note: %s\n", n.c_str());

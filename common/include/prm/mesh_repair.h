@@ -20,12 +20,12 @@ struct RepairReport {
   std::vector<std::string> notes;
 };
 
-// Removes repeated-index and duplicate faces, splits pinched vertices (one copy per extra fan of faces), flips away
-// zero-area slivers where that is safe (the others are kept and noted), closes every boundary loop with a triangle fan
-// around its centroid (paper §4) and drops unreferenced vertices. The result is closed, manifold and consistently
-// oriented. Throws prm::InputError naming the first offending edge for input that cannot be repaired without guessing:
-// an edge with three or more faces, or faces that are not consistently oriented (after the face removals).
-// Properties are dropped (the face set changes); comments are kept.
+// Removes repeated-index and duplicate faces, splits pinched vertices (one copy per extra fan of faces),
+// flips away zero-area slivers where that is safe (the others are kept and noted), closes every boundary loop
+// with a triangle fan around its centroid (paper §4) and drops unreferenced vertices. The result is closed,
+// manifold and consistently oriented. Throws prm::InputError naming the first offending edge for input that
+// cannot be repaired without guessing: an edge with three or more faces, or faces that are not consistently
+// oriented (after the face removals). Properties are dropped (the face set changes); comments are kept.
 Mesh repair_mesh(const Mesh& mesh, RepairReport* report = nullptr);
 
 }  // namespace prm

@@ -13,10 +13,11 @@ namespace prm {
 
 struct ComponentReport {
   size_t vertices = 0, faces = 0, edges = 0, boundary_loops = 0;
-  long euler = 0;     // V - E + F
+  long euler = 0;  // V - E + F
   bool manifold = true;
-  int genus = -1;     // (2 - euler - boundary_loops) / 2 for a manifold, oriented component; -1 otherwise
-                      // (a vertex shared with another component counts in both; manifold is judged per component)
+  int genus =
+      -1;  // (2 - euler - boundary_loops) / 2 for a manifold, oriented component; -1 otherwise
+           // (a vertex shared with another component counts in both; manifold is judged per component)
 };
 
 struct MeshReport {
@@ -24,13 +25,13 @@ struct MeshReport {
   size_t unreferenced_vertices = 0;
   size_t components = 0;
   size_t boundary_edges = 0, boundary_loops = 0;
-  size_t non_manifold_edges = 0;       // edges with three or more faces
-  size_t non_manifold_vertices = 0;    // vertices whose faces form more than one edge-connected fan (pinches)
-  size_t repeated_index_faces = 0;     // a face that uses one vertex twice
-  size_t zero_area_faces = 0;          // distinct vertices, zero area (collinear or coincident points)
-  size_t duplicate_faces = 0;          // same three vertices as an earlier face (either orientation)
-  size_t inconsistent_edges = 0;       // two faces traverse the edge in the same direction
-  long euler = 0;                      // V - E + F of the whole mesh, over referenced vertices
+  size_t non_manifold_edges = 0;     // edges with three or more faces
+  size_t non_manifold_vertices = 0;  // vertices whose faces form more than one edge-connected fan (pinches)
+  size_t repeated_index_faces = 0;   // a face that uses one vertex twice
+  size_t zero_area_faces = 0;        // distinct vertices, zero area (collinear or coincident points)
+  size_t duplicate_faces = 0;        // same three vertices as an earlier face (either orientation)
+  size_t inconsistent_edges = 0;     // two faces traverse the edge in the same direction
+  long euler = 0;                    // V - E + F of the whole mesh, over referenced vertices
   std::vector<ComponentReport> per_component;  // sorted by decreasing face count
   Vec3 bbox_min{0, 0, 0}, bbox_max{0, 0, 0};
   double diagonal = 0;
@@ -47,8 +48,8 @@ struct MeshReport {
   int genus_sum() const;  // sum over components (-1 when a component has no genus)
 };
 
-// Linear-logarithmic (sort-based edge table, union-find). Throws std::invalid_argument if a triangle uses a vertex
-// index out of range (read_mesh() never returns such a mesh).
+// Linear-logarithmic (sort-based edge table, union-find). Throws std::invalid_argument if a triangle uses a
+// vertex index out of range (read_mesh() never returns such a mesh).
 MeshReport validate_mesh(const Mesh& mesh);
 
 }  // namespace prm
