@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
 # Installs every Debian package that PRM's build, tests, benches and demo need.
+# Usage: scripts/setup.sh [--with-meshlab]
 # Non-interactive, idempotent (skips what is installed), Debian 12; run as root or with sudo available.
 # Nothing is fetched from anywhere but Debian's package archive.
 set -euo pipefail
@@ -15,7 +16,11 @@ packages=(
   libtbb-dev                          # parallel loops in the remesher and the metric
   libopenmesh-dev                     # half-edge mesh for the remesher's collapses and flips
   libcgal-demo                        # CGAL's data set: real meshes for tests and benches
+  python3                             # bench scripts' tables
 )
+# --with-meshlab: also MeshLab (GPL; an independent reference for bench/metro_crosscheck.sh, never linked) and the
+# virtual X server it needs.
+if [ "${1:-}" = "--with-meshlab" ]; then packages+=(meshlab xvfb xauth); fi
 
 missing=()
 for p in "${packages[@]}"; do
