@@ -1,0 +1,28 @@
+// Conversions between the remesher's PrmMesh, prm::Mesh and the codec's flat arrays (prm/codec.h).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "prm/codec.h"
+#include "prm/mesh.h"
+#include "prm/remesh/resample.h"
+
+namespace prm::pipeline {
+
+// The codec's frame for the remesher's quantization frame (same origin, step and bits: lattice points stay exact).
+codec::Frame codec_frame(const remesh::QuantFrame& frame);
+
+// Encodes a piecewise regular mesh: positions quantized in the PRM's own frame (docs/ARCHITECTURE.md), so that grid
+// vertices are lattice points in the integer coordinates the codec sees.
+codec::Result<std::vector<uint8_t>> encode_prm_mesh(const remesh::PrmMesh& prm, codec::EncodeReport* report);
+
+// Encodes any mesh file's contents: a PRM (its PLY carries the prm-frame comment and lattice labels) through
+// encode_prm_mesh, anything else through the general path at `bits` bits.
+codec::Result<std::vector<uint8_t>> encode_any_mesh(const Mesh& mesh, int bits, codec::EncodeReport* report,
+                                                    bool* was_prm = nullptr);
+
+// A decoded stream as a prm::Mesh (dequantized double positions).
+Mesh to_mesh(const codec::DecodedMesh& decoded);
+
+}  // namespace prm::pipeline

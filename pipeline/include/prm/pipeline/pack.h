@@ -1,0 +1,39 @@
+// The main job on one mesh (`prm pack`, bench/table1): close holes and fix what repair can fix, remesh into a
+// piecewise regular mesh that meets a target RMS error (paper §2), and encode it (spec/prm-format.md).
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "prm/codec.h"
+#include "prm/mesh.h"
+#include "prm/mesh_repair.h"
+#include "prm/remesh/remesh.h"
+
+namespace prm::pipeline {
+
+struct PackOptions {
+  // The grid size: exactly one of these three.
+  double target_error = 0;   // largest symmetric RMS distance to the input, fraction of the bounding-box diagonal
+  double grid_fraction = 0;  // fraction of the diagonal
+  double grid_size = 0;      // model units
+  double tau = 0.2;          // relief smoothing (paper §2.1)
+  int bits = 12;             // quantization of the stream
+  size_t metro_samples = 0;  // per surface for the error (0: 100,000, as `prm remesh`)
+  bool parallel = true;
+};
+
+struct PackResult {
+  std::vector<uint8_t> stream;
+  codec::EncodeReport report;
+  remesh::RemeshResult remesh;  // the PRM, the error of the remeshed mesh, the grid search
+  RepairReport repair;
+  bool repaired = false;        // the input had holes, pinches or degenerate faces
+  double seconds_repair = 0, seconds_remesh = 0, seconds_encode = 0;
+};
+
+// Throws prm::InputError on input the repair cannot make a closed manifold, remesh::TargetNotReached when no grid
+// size meets target_error, and prm::InputError with the codec's message if the PRM cannot be encoded (a bug).
+PackResult pack(const Mesh& input, const PackOptions& options);
+
+}  // namespace prm::pipeline

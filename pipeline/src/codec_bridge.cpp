@@ -1,0 +1,74 @@
+#include "prm/pipeline/codec_bridge.h"
+
+#include <string>
+
+#include "prm/error.h"
+
+namespace prm::pipeline {
+
+codec::Frame codec_frame(const remesh::QuantFrame& frame) {
+  codec::Frame f;
+  f.bits = frame.bits;
+  f.origin = {frame.origin[0], frame.origin[1], frame.origin[2]};
+  f.step = frame.step;
+  return f;
+}
+
+namespace {
+
+std::vector<uint32_t> flat_triangles(const Mesh& mesh) {
+  std::vector<uint32_t> tris;
+  tris.reserve(mesh.triangles.size() * 3);
+  for (const Tri& t : mesh.triangles) tris.insert(tris.end(), t.begin(), t.end());
+  return tris;
+}
+
+bool has_prm_frame(const Mesh& mesh) {
+  for (const std::string& c : mesh.comments)
+    if (c.rfind("prm-frame", 0) == 0) return true;
+  return false;
+}
+
+}  // namespace
+
+codec::Result<std::vector<uint8_t>> encode_prm_mesh(const remesh::PrmMesh& prm, codec::EncodeReport* report) {
+  const Mesh& m = prm.mesh;
+  std::vector<uint32_t> q(m.positions.size() * 3);
+  for (size_t v = 0; v < m.positions.size(); ++v)
+    for (int a = 0; a < 3; ++a)
+      q[3 * v + static_cast<size_t>(a)] = static_cast<uint32_t>(prm.frame.quantize(m.positions[v][a], a));
+  const std::vector<uint32_t> tris = flat_triangles(m);
+  return codec::encode_quantized(q.data(), m.positions.size(), tris.data(), m.triangles.size(),
+                                 codec_frame(prm.frame), report);
+}
+
+codec::Result<std::vector<uint8_t>> encode_any_mesh(const Mesh& mesh, int bits, codec::EncodeReport* report,
+                                                    bool* was_prm) {
+  if (was_prm) *was_prm = false;
+  if (has_prm_frame(mesh)) {
+    const remesh::PrmMesh prm = remesh::load_prm_labels(mesh);  // throws InputError on inconsistent labels
+    if (was_prm) *was_prm = true;
+    return encode_prm_mesh(prm, report);
+  }
+  const std::vector<uint32_t> tris = flat_triangles(mesh);
+  codec::EncodeOptions eo;
+  eo.position_bits = bits;
+  return codec::encode(mesh.positions.empty() ? nullptr : mesh.positions[0].data(), mesh.positions.size(),
+                       tris.data(), mesh.triangles.size(), eo, report);
+}
+
+Mesh to_mesh(const codec::DecodedMesh& decoded) {
+  Mesh m;
+  const size_t n = decoded.num_vertices();
+  m.positions.resize(n);
+  for (size_t v = 0; v < n; ++v)
+    for (int a = 0; a < 3; ++a)
+      m.positions[v][a] = codec::dequantize(decoded.quantized[3 * v + static_cast<size_t>(a)],
+                                            decoded.frame.origin[static_cast<size_t>(a)], decoded.frame.step);
+  m.triangles.resize(decoded.num_triangles());
+  for (size_t t = 0; t < m.triangles.size(); ++t)
+    m.triangles[t] = {decoded.triangles[3 * t], decoded.triangles[3 * t + 1], decoded.triangles[3 * t + 2]};
+  return m;
+}
+
+}  // namespace prm::pipeline
