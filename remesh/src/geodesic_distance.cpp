@@ -25,18 +25,11 @@ double triangle_update(const Vec3& a, const Vec3& b, const Vec3& x, double da, d
   if (!(x2 > 0)) return HUGE_VAL;
   const double dd = db - da;
   if (std::abs(dd) >= L) return HUGE_VAL;  // one of a, b lies on the other's shortest path: no front through both
-  // A virtual point source s = (s1, -s2) at distances da and db from a and b, when one exists: exact for fronts
-  // from a point, e.g. around a convex corner of the source set.
-  const double s1 = (da * da - db * db + L2) / (2 * L);
-  const double s2sq = da * da - s1 * s1;
-  if (s2sq >= 0) {
-    const double s2 = std::sqrt(s2sq);
-    const double t = s1 + (x1 - s1) * (s2 / (s2 + x2));  // where segment s -> x crosses the line of ab
-    if (t < 0 || t > L) return HUGE_VAL;
-    return std::hypot(x1 - s1, x2 + s2);
-  }
-  // Otherwise (da + db < L, e.g. both 0 on the rim of the source set) a planar front: unit direction
-  // n = (dd / L, sqrt(1 - (dd / L)^2)) and d(p) = da + n . p; its characteristic through x must cross ab.
+  // A planar front through a and b (the classic fast-marching update): unit direction n = (dd / L, sqrt(1 -
+  // (dd / L)^2)) and d(p) = da + n . p; its characteristic through x must cross ab. (A virtual point source at
+  // distances da and db from a and b is exact around convex corners of the source set, but measured worse: on a
+  // straight front it bends the front (mean error 0.0031 against 0.0014 here), on the sphere's latitude field 7x
+  // worse; relief_envelope_test has the figures.)
   const double n1 = dd / L, n2 = std::sqrt(1 - n1 * n1);
   const double t = x1 - n1 * (x2 / n2);
   if (t < 0 || t > L) return HUGE_VAL;

@@ -15,8 +15,8 @@ namespace prm::remesh {
 // star: vertex_star(mesh, true).
 // d[v] = geodesic distance from the union of the faces with source[f] != 0 (their vertices get 0); +infinity where
 // no source is reachable (a component without sources). Dijkstra: shortest paths along edges. FastMarching:
-// the same front order with triangle updates (a virtual point source when the two known values admit one, a planar
-// front otherwise), which removes most of the edge paths' metrication error.
+// the same front order with planar-front triangle updates (Kimmel and Sethian), which removes most of the edge
+// paths' metrication error.
 void geodesic_distance(const Mesh& mesh, const VertexStar& star, const std::vector<uint8_t>& source,
                        GeodesicMethod method, std::vector<double>& d);
 

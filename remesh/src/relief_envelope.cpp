@@ -48,7 +48,9 @@ EdgeEnvelope upper_envelope(const AxisValues& a, const AxisValues& b, double sna
   }
   e.start[static_cast<size_t>(e.count)] = 1;
 
-  // Snap: remove the shortest piece while it is shorter than `snap`.
+  // Snap: remove the shortest piece while it is shorter than `snap`; pieces shorter than 1e-6 of the edge are
+  // rounding (a crossing at an end) and always go, even with snap = 0: they would leave flat triangles.
+  const double min_piece = std::max(snap, 1e-6);
   auto erase = [&](int i) {
     for (int j = i; j < e.count; ++j) {
       e.start[static_cast<size_t>(j)] = e.start[static_cast<size_t>(j + 1)];
@@ -66,7 +68,7 @@ EdgeEnvelope upper_envelope(const AxisValues& a, const AxisValues& b, double sna
         shortest = i;
       }
     }
-    if (!(len < snap)) break;
+    if (!(len < min_piece)) break;
     const size_t s = static_cast<size_t>(shortest);
     if (shortest == 0) {
       erase(0);  // its successor now starts at 0

@@ -22,7 +22,7 @@ struct EdgeEnvelope {
 // Tie rule: where several fields are equal and largest, the label goes to the one that is largest just after the
 // point (the larger slope towards b), then to the lowest axis index; every piece therefore has a positive field
 // inside it (paper §2.1: a face of A_v, where d_v = 0, never takes label v from an edge).
-// Snapping: pieces shorter than `snap` (a fraction of the edge) are removed; an end piece gives its length to its
+// Snapping: pieces shorter than `snap` (a fraction of the edge; at least 1e-6) are removed; an end piece gives its length to its
 // neighbour (the crossing moves onto the vertex), an inner piece's neighbours meet at its middle. Computed from the
 // edge's two value sets only, so both faces of the edge see the same split points.
 EdgeEnvelope upper_envelope(const AxisValues& a, const AxisValues& b, double snap);

@@ -20,7 +20,7 @@ void add_reliefs_command(CLI::App& root) {
     double tau = 0.2;
     bool naive = false, json = false;
     std::string geodesic = "fmm";
-    double snap = 0.02, min_relief = 16;
+    double snap = 0.05, min_relief = 16;
   };
   auto opt = std::make_shared<Options>();
   cmd->add_option("input", opt->input,
@@ -32,7 +32,7 @@ void add_reliefs_command(CLI::App& root) {
   cmd->add_flag("--naive", opt->naive, "Each triangle to the axis closest to its normal (no smoothing)");
   cmd->add_option("--geodesic", opt->geodesic, "Distance fields: fmm (fast marching, default) or dijkstra (the paper's)")
       ->check(CLI::IsMember({"fmm", "dijkstra"}));
-  cmd->add_option("--snap", opt->snap, "Drop boundary pieces shorter than this fraction of an edge (default 0.02)")
+  cmd->add_option("--snap", opt->snap, "Drop boundary pieces shorter than this fraction of an edge (default 0.05)")
       ->check(CLI::Range(0.0, 0.24));
   cmd->add_option("--min-relief", opt->min_relief,
                   "Reliefs smaller than this many mean triangles join a neighbour (default 16; 0: keep all)")

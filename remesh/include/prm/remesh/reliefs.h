@@ -35,7 +35,7 @@ struct ReliefOptions {
   bool parallel = true;
   // Envelope pieces shorter than this fraction of their edge are dropped (their split points snap onto the edge's
   // ends or merge), which keeps needles and slivers out of the refined mesh.
-  double snap = 0.02;
+  double snap = 0.05;
   // Reliefs smaller than this many mean input triangles join a neighbour they face (0: keep every component).
   double min_relief_triangles = 16;
 };
