@@ -123,7 +123,7 @@ PrmMesh resample_and_merge(const LayoutInput& layout, const ResampleOptions& opt
   so.max_normal_angle_deg = options.max_normal_angle_deg;
   so.grid_length = static_cast<double>(prm.lattice.A) * prm.frame.step;
   const AabbTree tree(input);
-  const SeamStats ss = optimize_seams(merged, normals, tree, so);
+  const SeamStats ss = optimize_seams(merged, input, normals, tree, so);
   st.loops_broken = ss.loops_broken;
   st.seam_collapses = ss.boundary_collapses;
   st.area_flips = ss.area_flips;

@@ -1,11 +1,13 @@
 #include "seam_optimization.h"
 
+#include <algorithm>
 #include <cmath>
 #include <deque>
 #include <queue>
 #include <stdexcept>
 
 #include "openmesh_types.h"
+#include "prm/point_triangle_distance.h"
 #include "prm/vec3.h"
 
 namespace prm::remesh {
@@ -18,8 +20,19 @@ using FH = OMesh::FaceHandle;
 
 class SeamOptimizer {
  public:
-  SeamOptimizer(MergedMesh& m, const std::vector<Vec3>& normals, const AabbTree& tree, const SeamOptions& o)
-      : m_(m), normals_(normals), tree_(tree), cos_max_(std::cos(o.max_normal_angle_deg * M_PI / 180.0)) {
+  SeamOptimizer(MergedMesh& m, const Mesh& input, const std::vector<Vec3>& normals, const AabbTree& tree,
+                const SeamOptions& o)
+      : m_(m), input_(input), normals_(normals), tree_(tree),
+        cos_max_(std::cos(o.max_normal_angle_deg * M_PI / 180.0)) {
+    // The input's faces around each vertex, for the faces tied for nearest at an edge or a corner.
+    star_offset_.assign(input.positions.size() + 1, 0);
+    for (const Tri& t : input.triangles)
+      for (uint32_t v : t) ++star_offset_[v + 1];
+    for (size_t v = 0; v < input.positions.size(); ++v) star_offset_[v + 1] += star_offset_[v];
+    star_faces_.resize(star_offset_.back());
+    std::vector<uint32_t> fill(star_offset_.begin(), star_offset_.end() - 1);
+    for (uint32_t f = 0; f < input.triangles.size(); ++f)
+      for (uint32_t v : input.triangles[f]) star_faces_[fill[v]++] = f;
     // Twice the smallest area a triangle may have: a millionth of a grid triangle's size, squared.
     min_norm_ = 1e-12 * o.grid_length * o.grid_length;
     for (const MergedVertex& v : m.vertices) mesh_.add_vertex(OMesh::Point(v.position[0], v.position[1], v.position[2]));
@@ -69,7 +82,34 @@ class SeamOptimizer {
       }
     }
     tree_.closest(centroid, hit);
-    return hit.found() && dot(n, normals_[hit.face]) > limit;
+    if (!hit.found() || !(dot(n, normals_[hit.face]) > limit)) return false;
+    // Where the nearest input point lies on an edge or a corner of its face (a crease, the fold of a hole's fan),
+    // several input faces are nearest: the triangle must face the way of every one of them, so that the answer
+    // does not depend on which of them a search returns.
+    const Tri& s = input_.triangles[hit.face];
+    const Vec3 &sa = input_.positions[s[0]], &sb = input_.positions[s[1]], &sc = input_.positions[s[2]];
+    const Vec3 sn = cross(sb - sa, sc - sa);
+    const double A = norm2(sn);
+    if (!(A > 0)) return true;
+    const double bu = dot(cross(sc - hit.point, sa - hit.point), sn) / A;
+    const double bv = dot(cross(sa - hit.point, sb - hit.point), sn) / A;
+    const double bary[3] = {1 - bu - bv, bu, bv};
+    constexpr double kOnSide = 1e-7;
+    if (bary[0] > kOnSide && bary[1] > kOnSide && bary[2] > kOnSide) return true;
+    const double tie2 = hit.distance2 * (1 + 1e-7) + 1e-14 * std::sqrt(A);
+    for (size_t k = 0; k < 3; ++k) {
+      if (bary[k] <= kOnSide) continue;  // the nearest point is on the side opposite this corner, or the corner
+      for (uint32_t i = star_offset_[s[k]]; i < star_offset_[s[k] + 1]; ++i) {
+        const uint32_t g = star_faces_[i];
+        if (g == hit.face) continue;
+        const Tri& u = input_.triangles[g];
+        if (point_triangle_distance2(centroid, input_.positions[u[0]], input_.positions[u[1]], input_.positions[u[2]]) <=
+                tie2 &&
+            !(dot(n, normals_[g]) > limit))
+          return false;
+      }
+    }
+    return true;
   }
   bool face_ok(FH f) const {
     auto it = mesh_.cfv_iter(f);
@@ -420,6 +460,119 @@ class SeamOptimizer {
     return true;
   }
 
+  // Last resort for a bad face: remove the vertices in S (the face's corners, then with their neighbours) and
+  // triangulate the hole their stars leave afresh: the triangulation of the hole's polygon whose worst triangle is
+  // best shaped among those whose every triangle is valid and makes no edge that exists already (dynamic
+  // programming over the polygon's diagonals). The region must be a disk, so the topology does not change.
+  bool retriangulate_region(const std::vector<VH>& S) {
+    std::vector<FH> F;
+    for (VH v : S)
+      for (auto f : mesh_.vf_range(v))
+        if (std::find(F.begin(), F.end(), f) == F.end()) F.push_back(f);
+    auto in_region = [&](FH f) { return f.is_valid() && std::find(F.begin(), F.end(), f) != F.end(); };
+    // The boundary loop, as halfedges of the region's faces whose other side is outside.
+    std::vector<HH> border;
+    for (FH f : F)
+      for (auto h : mesh_.fh_range(f))
+        if (!in_region(mesh_.opposite_face_handle(h))) border.push_back(h);
+    const size_t n = border.size();
+    if (n < 3 || n > 40) return false;
+    std::vector<VH> ring{mesh_.from_vertex_handle(border[0])};
+    HH cur = border[0];
+    for (size_t k = 1; k < n; ++k) {
+      const VH end = mesh_.to_vertex_handle(cur);
+      HH next;
+      for (HH h : border)
+        if (mesh_.from_vertex_handle(h) == end) {
+          if (next.is_valid()) return false;  // the loop passes a vertex twice
+          next = h;
+        }
+      if (!next.is_valid() || next == border[0]) return false;  // several loops
+      ring.push_back(end);
+      cur = next;
+    }
+    if (mesh_.to_vertex_handle(cur) != ring[0]) return false;
+    for (VH v : ring)
+      if (std::find(S.begin(), S.end(), v) != S.end()) return false;
+    // A disk: V - E + F = 1 with V = |S| + n, E = n + interior edges, F = |F|.
+    {
+      std::vector<EH> edges;
+      for (FH f : F)
+        for (auto e : mesh_.fe_range(f))
+          if (std::find(edges.begin(), edges.end(), e) == edges.end()) edges.push_back(e);
+      if (static_cast<long>(S.size() + n) - static_cast<long>(edges.size()) + static_cast<long>(F.size()) != 1)
+        return false;
+    }
+    if (n == 3) {
+      // One triangle: not when the other side already has it.
+      const HH o = mesh_.find_halfedge(ring[1], ring[0]);
+      if (o.is_valid() && !mesh_.is_boundary(o) && mesh_.to_vertex_handle(mesh_.next_halfedge_handle(o)) == ring[2])
+        return false;
+    }
+    auto chord_free = [&](size_t i, size_t j) {
+      if (j == i + 1 || (i == 0 && j == n - 1)) return true;  // a side of the polygon
+      return !mesh_.find_halfedge(ring[i], ring[j]).is_valid();
+    };
+    std::vector<double> best(n * n, HUGE_VAL);
+    std::vector<size_t> split(n * n, 0);
+    for (size_t len = 2; len < n; ++len)
+      for (size_t i = 0; i + len < n; ++i) {
+        const size_t j = i + len;
+        double b = -HUGE_VAL;
+        if (chord_free(i, j)) {
+          for (size_t k = i + 1; k < j; ++k) {
+            const double sub = std::min(best[i * n + k], best[k * n + j]);
+            if (!(sub > b)) continue;
+            const VH a = ring[i], c = ring[k], d = ring[j];
+            if (!triangle_ok(a, c, d, pos(a), pos(c), pos(d))) continue;
+            const Vec3 pa = pos(a), pc = pos(c), pd = pos(d);
+            const double sq = norm2(pc - pa) + norm2(pd - pc) + norm2(pa - pd);
+            const double q = std::min(sub, sq > 0 ? norm(cross(pc - pa, pd - pa)) / sq : 0.0);
+            if (q > b) {
+              b = q;
+              split[i * n + j] = k;
+            }
+          }
+        }
+        best[i * n + j] = b;
+      }
+    if (!(best[n - 1] > 0)) return false;
+    for (FH f : F) mesh_.delete_face(f, true);
+    // Post-order: every triangle added is an ear of what is left of the hole.
+    std::vector<std::array<size_t, 3>> tris;
+    std::vector<std::pair<size_t, size_t>> stack{{0, n - 1}};
+    while (!stack.empty()) {
+      const auto [i, j] = stack.back();
+      stack.pop_back();
+      if (j - i < 2) continue;
+      const size_t k = split[i * n + j];
+      tris.push_back({i, k, j});
+      stack.push_back({i, k});
+      stack.push_back({k, j});
+    }
+    for (auto it = tris.rbegin(); it != tris.rend(); ++it) {
+      const FH f = mesh_.add_face(ring[(*it)[0]], ring[(*it)[1]], ring[(*it)[2]]);
+      if (!f.is_valid()) throw std::logic_error("seam repair: a retriangulated region did not close");
+    }
+    return true;
+  }
+
+  bool retriangulate_around(FH f) {
+    std::vector<VH> corners;
+    for (auto v : mesh_.fv_range(f)) corners.push_back(v);
+    for (VH v : corners)
+      if (retriangulate_region({v})) return true;
+    for (size_t k = 0; k < 3; ++k)
+      if (retriangulate_region({corners[k], corners[(k + 1) % 3]})) return true;
+    if (retriangulate_region(corners)) return true;
+    // The corners and their neighbours.
+    std::vector<VH> S = corners;
+    for (VH v : corners)
+      for (auto w : mesh_.vv_range(v))
+        if (std::find(S.begin(), S.end(), w) == S.end()) S.push_back(w);
+    return retriangulate_region(S);
+  }
+
   size_t remove_bad_triangles() {
     size_t repairs = 0;
     // Rounds of local fixes; when a round fixes nothing, the next may also move grid vertices (which then stop
@@ -438,6 +591,17 @@ class SeamOptimizer {
         if (allow_lattice) break;
         allow_lattice = true;
       }
+    }
+    // What the local moves could not fix: the region around each bad face is removed and triangulated afresh.
+    for (int round = 0; round < 8; ++round) {
+      size_t fixed = 0, bad = 0;
+      for (auto f : mesh_.faces()) {
+        if (mesh_.status(f).deleted() || face_ok(f)) continue;
+        ++bad;
+        if (retriangulate_around(f)) ++fixed;
+      }
+      repairs += fixed;
+      if (bad == 0 || fixed == 0) break;
     }
     return repairs;
   }
@@ -464,6 +628,8 @@ class SeamOptimizer {
   }
 
   MergedMesh& m_;
+  const Mesh& input_;
+  std::vector<uint32_t> star_offset_, star_faces_;
   const std::vector<Vec3>& normals_;
   const AabbTree& tree_;
   double cos_max_;
@@ -473,9 +639,9 @@ class SeamOptimizer {
 
 }  // namespace
 
-SeamStats optimize_seams(MergedMesh& mesh, const std::vector<Vec3>& input_normals, const AabbTree& input_tree,
-                         const SeamOptions& options) {
-  return SeamOptimizer(mesh, input_normals, input_tree, options).run();
+SeamStats optimize_seams(MergedMesh& mesh, const Mesh& input, const std::vector<Vec3>& input_normals,
+                         const AabbTree& input_tree, const SeamOptions& options) {
+  return SeamOptimizer(mesh, input, input_normals, input_tree, options).run();
 }
 
 }  // namespace prm::remesh

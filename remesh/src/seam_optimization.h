@@ -26,9 +26,11 @@ struct SeamStats {
   size_t non_lattice_vertices = 0;
 };
 
-// input_normals: unit normal of every input face (MergedVertex::source_face indexes it); input_tree: the input's
-// faces, for the normal of the input nearest to a triangle. On return, mesh has no deleted elements.
-SeamStats optimize_seams(MergedMesh& mesh, const std::vector<Vec3>& input_normals, const AabbTree& input_tree,
-                         const SeamOptions& options);
+// input: the input surface (a closed 2-manifold); input_normals: unit normal of every input face
+// (MergedVertex::source_face indexes it); input_tree: the input's faces, for the normal of the input nearest to a
+// triangle (all the nearest, when the nearest point is on an edge or a corner). On return, mesh has no deleted
+// elements.
+SeamStats optimize_seams(MergedMesh& mesh, const Mesh& input, const std::vector<Vec3>& input_normals,
+                         const AabbTree& input_tree, const SeamOptions& options);
 
 }  // namespace prm::remesh
