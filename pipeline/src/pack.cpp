@@ -40,7 +40,7 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
   ro.grid_fraction = options.grid_fraction;
   ro.target_error = options.target_error;
   MetroOptions mo;
-  mo.samples = options.metro_samples ? options.metro_samples : 100000;  // as `prm remesh`
+  mo.samples = options.metro_samples;  // 0: Metro's ten per face, as `prm compare` measures
   const MetroReference reference(source, mo);
   auto error = [&](const Mesh& candidate) {
     const DistanceReport d = reference.compare(candidate);

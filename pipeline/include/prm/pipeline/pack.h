@@ -19,7 +19,7 @@ struct PackOptions {
   double grid_size = 0;      // model units
   double tau = 0.2;          // relief smoothing (paper §2.1)
   int bits = 12;             // quantization of the stream
-  size_t metro_samples = 0;  // per surface for the error (0: 100,000, as `prm remesh`)
+  size_t metro_samples = 0;  // per surface for the error (0: Metro's default, ten per face)
   bool parallel = true;
 };
 
