@@ -67,7 +67,9 @@ TEST(Pack, RealMeshesRoundTripExactly) {
     const auto decoded = prm::codec::decode(r.stream.data(), r.stream.size());
     const prm::Mesh out = prm::pipeline::to_mesh(decoded.value);
     const prm::DistanceReport d = prm::metro_distance(input, out);
-    EXPECT_LT(d.rel(d.rms), 2 * r.remesh.error.rms + 1e-4) << "remeshed " << r.remesh.error.rms;
+    // A mesh with holes is measured from its own samples only: the decoded mesh covers the holes (their fans).
+    const double rms = r.repaired ? d.a_to_b.rms : d.rms;
+    EXPECT_LT(d.rel(rms), 1.25 * r.remesh.error.rms + 2e-5) << "remeshed " << r.remesh.error.rms;
   }
 }
 
