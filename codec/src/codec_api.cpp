@@ -6,7 +6,10 @@
 
 #include "clers.h"
 #include "container.h"
+#include "lers.h"
 #include "limits.h"
+#include "patch_shared.h"
+#include "patches.h"
 #include "positions.h"
 #include "prm/codec.h"
 #include "status.h"
@@ -86,8 +89,14 @@ Status check_frame(const Frame& f) {
 }
 
 Status encode_impl(const uint32_t* q, size_t nv, const uint32_t* tris, size_t nt, const Frame& frame,
-                   std::vector<uint8_t>& out, EncodeReport* report) {
+                   std::vector<uint8_t>& out, EncodeReport* report, const PrmOptions* prm = nullptr) {
   PRM_TRY(check_frame(frame));
+  if (prm) {
+    if (prm->grid < 2 || prm->grid > (int64_t{1} << frame.bits))
+      return make_status(Error::invalid_argument, "8.4", 0, "grid size must be 2..2^bits quantization steps");
+    if (prm->height_depth < -1 || prm->height_depth > kMaxHeightDepth)
+      return make_status(Error::invalid_argument, "9.4", 0, "height depth must be 0..6 (or -1: best)");
+  }
   const uint32_t qmax = (uint32_t{1} << frame.bits) - 1;
   for (size_t i = 0; i < 3 * nv; ++i)
     if (q[i] > qmax)
@@ -116,11 +125,52 @@ Status encode_impl(const uint32_t* q, size_t nv, const uint32_t* tris, size_t nt
   if (real == 0) h.bbox_min = h.bbox_max = {0, 0, 0};
   h.vertices = real;
   h.triangles = static_cast<uint32_t>(nt);
-  std::vector<uint8_t> conn, pos;
+  std::vector<uint8_t> conn, pos, irregular_payload, patch_payload;
   PRM_TRY(write_connectivity(plan, conn));
-  PRM_TRY(write_positions(mesh, cq, h.bbox_min, h.bbox_max, pos));
+  // §7-§9 A PRM: regular triangles found by the encoder's own check; none: the general path.
+  std::vector<int8_t> tri_axis;
+  std::vector<uint8_t> known;
+  PatchStats patch_stats;
+  uint32_t regular = 0;
+  int depth_used = -1;
+  if (prm) {
+    classify_triangles(mesh, cq, prm->grid, tri_axis);
+    for (int8_t a : tri_axis) regular += a >= 0;
+  }
+  if (regular > 0) {
+    std::vector<uint8_t> irregular(mesh.num_triangles(), 0);
+    const std::vector<uint8_t> dummy = dummy_triangles(mesh);
+    for (uint32_t t = 0; t < mesh.num_triangles(); ++t) irregular[t] = dummy[t] != kDummyTriangle && tri_axis[t] < 0;
+    write_irregular_triangles(mesh, irregular, irregular_payload);
+    // §9.4 The height depth: the caller's, or the one giving the smallest section.
+    const int first = prm->height_depth >= 0 ? prm->height_depth : 0;
+    const int last = prm->height_depth >= 0 ? prm->height_depth : kMaxHeightDepth;
+    for (int d = first; d <= last; ++d) {
+      std::vector<uint8_t> payload, k;
+      PatchStats st;
+      PRM_TRY(write_patches(mesh, cq, frame.bits, prm->grid, tri_axis, d, payload, k, &st));
+      if (depth_used < 0 || payload.size() < patch_payload.size()) {
+        patch_payload = std::move(payload);
+        known = std::move(k);
+        patch_stats = st;
+        depth_used = d;
+      }
+    }
+    h.version_minor = kFormatMinorPrm;
+    PRM_TRY(write_positions(mesh, cq, h.bbox_min, h.bbox_max, pos, &known));
+  } else {
+    PRM_TRY(write_positions(mesh, cq, h.bbox_min, h.bbox_max, pos));
+  }
   size_t header_bytes = 0;
-  out = write_container(h, {{kSectionConnectivity, &conn}, {kSectionPositions, &pos}}, &header_bytes);
+  if (regular > 0)
+    out = write_container(h,
+                          {{kSectionConnectivity, &conn},
+                           {kSectionPositions, &pos},
+                           {kSectionIrregular, &irregular_payload},
+                           {kSectionPatches, &patch_payload}},
+                          &header_bytes);
+  else
+    out = write_container(h, {{kSectionConnectivity, &conn}, {kSectionPositions, &pos}}, &header_bytes);
   if (report) {
     EncodeReport& r = *report;
     r = EncodeReport{};
@@ -128,7 +178,13 @@ Status encode_impl(const uint32_t* q, size_t nv, const uint32_t* tris, size_t nt
     r.header_bytes = header_bytes;
     r.connectivity_bytes = conn.size();
     r.position_bytes = pos.size();
-    r.framing_bytes = out.size() - header_bytes - conn.size() - pos.size();
+    r.irregular_bytes = irregular_payload.size();
+    r.patch_bytes = patch_payload.size();
+    r.framing_bytes = out.size() - header_bytes - conn.size() - pos.size() - r.irregular_bytes - r.patch_bytes;
+    r.regular_triangles = regular;
+    r.regular_patches = patch_stats.patches;
+    r.patch_vertices = patch_stats.patch_vertices;
+    r.height_depth = depth_used;
     r.vertices = real;
     r.triangles = static_cast<uint32_t>(nt);
     r.components = static_cast<uint32_t>(plan.component_sizes.size());
@@ -205,6 +261,20 @@ Result<std::vector<uint8_t>> encode_quantized(const uint32_t* q, size_t nv, cons
   return res;
 }
 
+Result<std::vector<uint8_t>> encode_prm(const uint32_t* q, size_t nv, const uint32_t* tris, size_t nt,
+                                        const Frame& frame, const PrmOptions& options, EncodeReport* report) {
+  Result<std::vector<uint8_t>> res;
+  try {
+    res.status = encode_impl(q, nv, tris, nt, frame, res.value, report, &options);
+  } catch (const std::bad_alloc&) {
+    res.status = make_status(Error::out_of_memory, "", 0, "out of memory");
+  } catch (...) {
+    res.status = make_status(Error::internal, "", 0, "unexpected exception");
+  }
+  if (!res.ok()) res.value.clear();
+  return res;
+}
+
 Result<DecodedMesh> decode(const uint8_t* data, size_t size, const DecodeOptions& options) {
   Result<DecodedMesh> res;
   try {
@@ -226,7 +296,19 @@ Result<DecodedMesh> decode(const uint8_t* data, size_t size, const DecodeOptions
                                    h.triangles, mesh);
     if (!res.ok()) return res;
     std::vector<uint32_t> q;
-    res.status = read_positions(data + ps->offset, ps->size, ps->offset, mesh, h.bbox_min, h.bbox_max, q);
+    const Section* is = c.find(kSectionIrregular);
+    const Section* pts = c.find(kSectionPatches);
+    if (is && pts) {  // §2 a PRM: irregular triangles, patches, then the other vertices
+      std::vector<uint8_t> cls, known;
+      res.status = read_irregular_triangles(data + is->offset, is->size, is->offset, mesh, cls);
+      if (!res.ok()) return res;
+      res.status = read_patches(data + pts->offset, pts->size, pts->offset, mesh, h.frame.bits, h.bbox_min,
+                                h.bbox_max, cls, q, known);
+      if (!res.ok()) return res;
+      res.status = read_positions(data + ps->offset, ps->size, ps->offset, mesh, h.bbox_min, h.bbox_max, q, &known);
+    } else {
+      res.status = read_positions(data + ps->offset, ps->size, ps->offset, mesh, h.bbox_min, h.bbox_max, q);
+    }
     if (!res.ok()) return res;
     DecodedMesh& out = res.value;
     out.frame = h.frame;

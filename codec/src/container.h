@@ -13,12 +13,14 @@ namespace prm::codec {
 // §3.1 Magic: "PRM" followed by 0x1A.
 constexpr uint8_t kMagic[4] = {'P', 'R', 'M', 0x1A};
 
-// §3.4 Section ids. 3..15 are reserved for the PRM sections (irregular triangles, patch headers, heights; see
-// §7-§9); a version 1.0 decoder rejects them as unsupported_feature. Anything else is bad_section.
+// §3.4 Section ids: 3 and 4 are the PRM sections (§7 irregular triangles, §8-§9 patches), present together or not
+// at all; 5..15 are reserved for later versions and rejected as unsupported_feature. Anything else is bad_section.
 enum SectionId : uint8_t {
   kSectionConnectivity = 1,
   kSectionPositions = 2,
-  kFirstReservedSection = 3,
+  kSectionIrregular = 3,
+  kSectionPatches = 4,
+  kFirstReservedSection = 5,
   kLastReservedSection = 15,
 };
 const char* section_name(uint8_t id);

@@ -17,6 +17,10 @@ const char* section_name(uint8_t id) {
       return "connectivity";
     case kSectionPositions:
       return "positions";
+    case kSectionIrregular:
+      return "irregular_triangles";
+    case kSectionPatches:
+      return "patches";
     default:
       return id >= kFirstReservedSection && id <= kLastReservedSection ? "reserved" : "unknown";
   }
@@ -87,8 +91,8 @@ Status read_container(const uint8_t* data, size_t size, Container& out) {
     if (body.failed()) return make_status(body.error(), "3.4", body.error_offset(), "stream ends in a section header");
     if (id >= kFirstReservedSection && id <= kLastReservedSection)
       return make_status(Error::unsupported_feature, "3.4", at,
-                         "section " + std::to_string(id) + " is reserved for a later version (PRM sections)");
-    if (id != kSectionConnectivity && id != kSectionPositions)
+                         "section " + std::to_string(id) + " is reserved for a later version");
+    if (id != kSectionConnectivity && id != kSectionPositions && id != kSectionIrregular && id != kSectionPatches)
       return make_status(Error::bad_section, "3.4", at, "unknown section id " + std::to_string(id));
     if (id <= last)
       return make_status(Error::bad_section, "3.4", at, "section " + std::to_string(id) + " repeated or out of order");
@@ -108,6 +112,8 @@ Status read_container(const uint8_t* data, size_t size, Container& out) {
     if (!out.find(id))
       return make_status(Error::bad_section, "3.4", size - 4,
                          std::string("the ") + section_name(id) + " section is missing");
+  if ((out.find(kSectionIrregular) != nullptr) != (out.find(kSectionPatches) != nullptr))
+    return make_status(Error::bad_section, "3.4", size - 4, "the irregular_triangles and patches sections come together");
   return ok_status();
 }
 

@@ -38,12 +38,22 @@ inline bool decode_residual(RangeDecoder& rc, ResidualModels& m, int axis, int c
 
 Status read_positions(const uint8_t* data, size_t size, uint64_t offset, const ClosedMesh& mesh,
                       const std::array<uint32_t, 3>& lo, const std::array<uint32_t, 3>& hi,
-                      std::vector<uint32_t>& q) {
-  q.assign(size_t{3} * mesh.num_vertices, 0);
-  uint32_t real = 0;
-  for (uint32_t v = 0; v < mesh.num_vertices; ++v) real += !mesh.is_dummy[v];
+                      std::vector<uint32_t>& q, const std::vector<uint8_t>* known) {
+  if (!known) q.assign(size_t{3} * mesh.num_vertices, 0);
+  uint32_t real = 0;  // vertices to decode here
+  for (uint32_t v = 0; v < mesh.num_vertices; ++v) real += !mesh.is_dummy[v] && !(known && (*known)[v]);
   if (real == 0) {
     if (size != 0) return make_status(Error::trailing_bytes, "10", offset, "position data for no vertices");
+    if (known) {  // §6.8 still holds for the vertices the patches placed
+      std::vector<uint32_t> vc;
+      vertex_corners(mesh, vc);
+      for (uint32_t v = 0; v < mesh.num_vertices; ++v)
+        if (vc[v] == UINT32_MAX) return make_status(Error::bad_connectivity, "6.4.8", offset, "a vertex has no triangle");
+      DegreeOrder order(mesh, known);
+      std::vector<uint32_t> mark(mesh.num_vertices, UINT32_MAX);
+      if (!seed_known(mesh, vc, *known, order, mark.data()))
+        return make_status(Error::non_manifold_result, "6.8", offset, "two edges join a vertex to the same vertex");
+    }
     return ok_status();
   }
   // The vertex count is already bounded by the connectivity section (§4.3); the range decoder needs 4 bytes.
@@ -53,12 +63,14 @@ Status read_positions(const uint8_t* data, size_t size, uint64_t offset, const C
   for (uint32_t v = 0; v < mesh.num_vertices; ++v)  // every id has a corner by §6.4; checked, not assumed
     if (vc[v] == UINT32_MAX)
       return make_status(Error::bad_connectivity, "6.4.8", offset, "a vertex has no triangle");
-  DegreeOrder order(mesh);
+  DegreeOrder order(mesh, known);
   RangeDecoder rc;
   rc.init(data, size);
   auto models = std::make_unique<ResidualModels>();
   Prediction pr;
   std::vector<uint32_t> mark(mesh.num_vertices, UINT32_MAX);
+  if (known && !seed_known(mesh, vc, *known, order, mark.data()))
+    return make_status(Error::non_manifold_result, "6.8", offset, "two edges join a vertex to the same vertex");
   uint32_t previous = UINT32_MAX;
   for (uint32_t v = order.next(); v != UINT32_MAX; v = order.next()) {
     if (!predict_position(mesh, vc, q.data(), v, previous, lo, hi, order, mark.data(), pr))

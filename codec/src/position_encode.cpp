@@ -37,14 +37,17 @@ void encode_residual(RangeEncoder& rc, ResidualModels& m, int axis, int ctx, int
 }  // namespace
 
 Status write_positions(const ClosedMesh& mesh, const std::vector<uint32_t>& q, const std::array<uint32_t, 3>& lo,
-                       const std::array<uint32_t, 3>& hi, std::vector<uint8_t>& payload) {
+                       const std::array<uint32_t, 3>& hi, std::vector<uint8_t>& payload,
+                       const std::vector<uint8_t>* known) {
   std::vector<uint32_t> vc;
   vertex_corners(mesh, vc);
-  DegreeOrder order(mesh);
+  DegreeOrder order(mesh, known);
   RangeEncoder rc;
   auto models = std::make_unique<ResidualModels>();
   Prediction pr;
   std::vector<uint32_t> mark(mesh.num_vertices, UINT32_MAX);
+  if (known && !seed_known(mesh, vc, *known, order, mark.data()))
+    return make_status(Error::internal, "6.8", 0, "two edges join the same pair of vertices");
   uint32_t previous = UINT32_MAX;
   for (uint32_t v = order.next(); v != UINT32_MAX; v = order.next()) {
     if (!predict_position(mesh, vc, q.data(), v, previous, lo, hi, order, mark.data(), pr))

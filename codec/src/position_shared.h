@@ -41,9 +41,12 @@ constexpr uint32_t kDegreeCap = 5;
 class DegreeOrder {
  public:
   enum : uint8_t { kPending = 0, kDone = 1, kDummy = 2 };
-  explicit DegreeOrder(const ClosedMesh& mesh) : num_vertices_(mesh.num_vertices), degree_(mesh.num_vertices, 0) {
+  // known (optional, §10.2 for PRM streams): vertices whose positions the patches section already gave.
+  explicit DegreeOrder(const ClosedMesh& mesh, const std::vector<uint8_t>* known = nullptr)
+      : num_vertices_(mesh.num_vertices), degree_(mesh.num_vertices, 0) {
     state_.resize(mesh.num_vertices);
-    for (uint32_t v = 0; v < num_vertices_; ++v) state_[v] = mesh.is_dummy[v] ? kDummy : kPending;
+    for (uint32_t v = 0; v < num_vertices_; ++v)
+      state_[v] = mesh.is_dummy[v] ? kDummy : (known && (*known)[v]) ? kDone : kPending;
     for (auto& b : buckets_) b.reserve(64);
   }
   // The next vertex, or UINT32_MAX at the end.
@@ -167,6 +170,28 @@ inline bool predict_position(const ClosedMesh& mesh, const std::vector<uint32_t>
     out.p[k] = p < lo[k] ? lo[k] : p > hi[k] ? hi[k] : p;
     out.spread[k] = 0;
     out.scale[k] = 0;
+  }
+  return true;
+}
+
+// §10.2 Seeding for PRM streams: the vertices the patches section placed are decoded already; in increasing id,
+// each one's fan is walked, pushing its pending neighbours (their degrees grow) and checking §6.8 (no neighbour
+// twice). Returns false if a fan lists a neighbour twice.
+inline bool seed_known(const ClosedMesh& mesh, const std::vector<uint32_t>& vertex_corner,
+                       const std::vector<uint8_t>& known, DegreeOrder& order, uint32_t* mark) {
+  const uint32_t* cv = mesh.corner_vertex.data();
+  const int32_t* opp = mesh.opp.data();
+  for (uint32_t v = 0; v < mesh.num_vertices; ++v) {
+    if (!known[v]) continue;
+    const uint32_t c0 = vertex_corner[v];
+    uint32_t c = c0;
+    do {
+      const uint32_t x = cv[corner_next(c)];
+      if (mark[x] == v) return false;
+      mark[x] = v;
+      order.push_neighbour(x);
+      c = fan_next(opp, c);
+    } while (c != c0);
   }
   return true;
 }

@@ -11,12 +11,15 @@
 namespace prm::codec {
 
 // q holds 3 quantized coordinates per closed-mesh vertex (dummies' entries are ignored), within [lo, hi].
+// known (optional, PRM streams): vertices the patches section placed (§10.2); they are not coded here.
 Status write_positions(const ClosedMesh& mesh, const std::vector<uint32_t>& q, const std::array<uint32_t, 3>& lo,
-                       const std::array<uint32_t, 3>& hi, std::vector<uint8_t>& payload);
+                       const std::array<uint32_t, 3>& hi, std::vector<uint8_t>& payload,
+                       const std::vector<uint8_t>* known = nullptr);
 
-// Fills q (3 per closed-mesh vertex; dummies get 0).
+// Fills q (3 per closed-mesh vertex; dummies get 0). With `known`, q already holds those vertices' positions and
+// only the others are decoded.
 Status read_positions(const uint8_t* data, size_t size, uint64_t offset, const ClosedMesh& mesh,
                       const std::array<uint32_t, 3>& lo, const std::array<uint32_t, 3>& hi,
-                      std::vector<uint32_t>& q);
+                      std::vector<uint32_t>& q, const std::vector<uint8_t>* known = nullptr);
 
 }  // namespace prm::codec

@@ -228,7 +228,7 @@ TEST(Hostile, HeaderFields) {
 
 TEST(Hostile, ReservedAndUnknownSections) {
   const std::vector<uint8_t> conn = varints({0, 0, 0});
-  for (uint8_t id : {0, 3, 9, 15, 16, 200}) {
+  for (uint8_t id : {0, 3, 4, 5, 9, 15, 16, 200}) {
     StreamWriter w;
     for (uint8_t b : std::initializer_list<uint8_t>{'P', 'R', 'M', 0x1A, 1, 0, 0, 12}) w.u8(b);
     w.varint(0);
@@ -244,7 +244,8 @@ TEST(Hostile, ReservedAndUnknownSections) {
     std::vector<uint8_t> s = w.buffer();
     fix_crc(s);
     const Error e = decode_checked(s, 1 << 20).error;
-    EXPECT_EQ(e, id >= 3 && id <= 15 ? Error::unsupported_feature : Error::bad_section) << int(id);
+    // 3 and 4 (the PRM sections) without the positions section, or alone, are bad; 5..15 are reserved.
+    EXPECT_EQ(e, id >= 5 && id <= 15 ? Error::unsupported_feature : Error::bad_section) << int(id);
   }
   // The empty mesh decodes.
   EXPECT_TRUE(decode_checked(build(0, 0, conn, {}), 1 << 20).ok());

@@ -38,8 +38,10 @@ codec::Result<std::vector<uint8_t>> encode_prm_mesh(const remesh::PrmMesh& prm, 
     for (int a = 0; a < 3; ++a)
       q[3 * v + static_cast<size_t>(a)] = static_cast<uint32_t>(prm.frame.quantize(m.positions[v][a], a));
   const std::vector<uint32_t> tris = flat_triangles(m);
-  return codec::encode_quantized(q.data(), m.positions.size(), tris.data(), m.triangles.size(),
-                                 codec_frame(prm.frame), report);
+  codec::PrmOptions options;
+  options.grid = prm.lattice.A;
+  return codec::encode_prm(q.data(), m.positions.size(), tris.data(), m.triangles.size(), codec_frame(prm.frame),
+                           options, report);
 }
 
 codec::Result<std::vector<uint8_t>> encode_any_mesh(const Mesh& mesh, int bits, codec::EncodeReport* report,

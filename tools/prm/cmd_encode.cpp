@@ -8,6 +8,7 @@
 #include "commands.h"
 #include "prm/error.h"
 #include "prm/mesh_io.h"
+#include "prm/pipeline/codec_bridge.h"
 
 namespace prm::cli {
 
@@ -25,23 +26,23 @@ void add_encode_command(CLI::App& root) {
   cmd->add_flag("--json", opt->json, "Print the report as one JSON object");
   cmd->callback([opt] {
     const Mesh mesh = read_mesh(opt->input);
-    std::vector<uint32_t> tris;
-    tris.reserve(mesh.triangles.size() * 3);
-    for (const Tri& t : mesh.triangles) tris.insert(tris.end(), t.begin(), t.end());
-    codec::EncodeOptions eo;
-    eo.position_bits = opt->bits;
     codec::EncodeReport rep;
+    bool was_prm = false;
     const auto t0 = std::chrono::steady_clock::now();
-    const auto enc = codec::encode(mesh.positions.empty() ? nullptr : mesh.positions[0].data(),
-                                   mesh.positions.size(), tris.data(), mesh.triangles.size(), eo, &rep);
+    // A PRM file (`prm remesh` output: prm-frame comment, lattice labels) is encoded in its own frame, so that its
+    // grid vertices are lattice points; any other mesh takes the general path at --bits.
+    const auto enc = pipeline::encode_any_mesh(mesh, opt->bits, &rep, &was_prm);
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     if (!enc.ok()) throw InputError("'" + opt->input + "' cannot be encoded: " + describe(enc.status));
     write_file_bytes(opt->output, enc.value);
+    const auto header = codec::inspect(enc.value.data(), enc.value.size());
+    const int bits = header.ok() ? header.value.frame.bits : opt->bits;  // a PRM keeps its own frame
     const double v = rep.vertices ? rep.vertices : 1;
     if (opt->json) {
       nlohmann::json j = {{"input", opt->input},
                           {"output", opt->output},
-                          {"bits", opt->bits},
+                          {"bits", bits},
+                          {"piecewise_regular", was_prm},
                           {"vertices", rep.vertices},
                           {"triangles", rep.triangles},
                           {"components", rep.components},
@@ -69,7 +70,7 @@ void add_encode_command(CLI::App& root) {
       std::printf("\n  connectivity %zu B (%.3f bpv), positions %zu B (%.3f bpv, %d bits), header %zu B, "
                   "framing %zu B; %.1f ms\n",
                   rep.connectivity_bytes, 8.0 * rep.connectivity_bytes / v, rep.position_bytes,
-                  8.0 * rep.position_bytes / v, opt->bits, rep.header_bytes, rep.framing_bytes, ms);
+                  8.0 * rep.position_bytes / v, bits, rep.header_bytes, rep.framing_bytes, ms);
     }
   });
 }

@@ -23,5 +23,7 @@ void add_render_command(CLI::App& root);
 void add_remesh_command(CLI::App& root);
 void add_encode_command(CLI::App& root);
 void add_decode_command(CLI::App& root);
+void add_pack_command(CLI::App& root);
+void add_unpack_command(CLI::App& root);
 
 }  // namespace prm::cli

@@ -26,6 +26,8 @@ int main(int argc, char** argv) {
   add_remesh_command(app);
   add_encode_command(app);
   add_decode_command(app);
+  add_pack_command(app);
+  add_unpack_command(app);
 
   try {
     app.parse(argc, argv);

@@ -18,6 +18,50 @@ bool is_prm_stream_path(const std::string& path) {
   return ext == ".prm";
 }
 
+namespace {
+
+enum class Part { connectivity, irregular, geometry };
+
+// Sections by name (codec::inspect): §6 connectivity; §7 irregular triangles; everything else is geometry.
+Part part_of(const std::string& section) {
+  if (section.find("connectivity") != std::string::npos) return Part::connectivity;
+  if (section.find("irregular_triangles") != std::string::npos || section.find("lers") != std::string::npos)
+    return Part::irregular;
+  return Part::geometry;
+}
+
+}  // namespace
+
+nlohmann::json stream_byte_split(const std::vector<uint8_t>& bytes) {
+  const auto info = codec::inspect(bytes.data(), bytes.size());
+  if (!info.ok()) throw InputError("not a valid PRM stream: " + describe(info.status));
+  uint64_t parts[3] = {0, 0, 0}, payload = 0;
+  for (const auto& sec : info.value.sections) {
+    parts[static_cast<int>(part_of(sec.name))] += sec.size;
+    payload += sec.size;
+  }
+  return {{"total", info.value.total_bytes},
+          {"connectivity", parts[0]},
+          {"irregular", parts[1]},
+          {"geometry", parts[2]},
+          {"header_and_framing", info.value.total_bytes - payload}};
+}
+
+std::string describe_byte_split(const nlohmann::json& split, size_t vertices) {
+  const double v = vertices ? static_cast<double>(vertices) : 1.0;
+  char buf[512];
+  auto part = [&](const char* key) { return split[key].get<uint64_t>(); };
+  std::snprintf(buf, sizeof buf,
+                "connectivity %llu B (%.3f bpv), irregular triangles %llu B (%.3f bpv), geometry %llu B (%.3f bpv), "
+                "header and framing %llu B; total %llu B (%.3f bpv)",
+                static_cast<unsigned long long>(part("connectivity")), 8.0 * part("connectivity") / v,
+                static_cast<unsigned long long>(part("irregular")), 8.0 * part("irregular") / v,
+                static_cast<unsigned long long>(part("geometry")), 8.0 * part("geometry") / v,
+                static_cast<unsigned long long>(part("header_and_framing")),
+                static_cast<unsigned long long>(part("total")), 8.0 * part("total") / v);
+  return buf;
+}
+
 void print_prm_stream_info(const std::string& path, bool json) {
   const std::vector<uint8_t> bytes = read_file_bytes(path);
   const auto info = codec::inspect(bytes.data(), bytes.size());
@@ -52,6 +96,7 @@ void print_prm_stream_info(const std::string& path, bool json) {
         {"crc32", s.crc},
         {"total_bytes", s.total_bytes},
         {"bits_per_vertex", 8.0 * s.total_bytes / v},
+        {"byte_split", stream_byte_split(bytes)},
         {"decodes", dec.ok()}};
     if (!dec.ok()) j["decode_error"] = describe(dec.status);
     std::printf("%s\n", j.dump().c_str());
@@ -72,6 +117,7 @@ void print_prm_stream_info(const std::string& path, bool json) {
                 static_cast<unsigned long long>(sec.size), 8.0 * sec.size / v);
   std::printf("  %-14s %10llu %10d   CRC-32 %08X\n", "crc", static_cast<unsigned long long>(s.total_bytes - 4), 4,
               s.crc);
+  std::printf("  byte split: %s\n", describe_byte_split(stream_byte_split(bytes), s.vertices).c_str());
   if (dec.ok())
     std::printf("  decodes: yes\n");
   else

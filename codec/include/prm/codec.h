@@ -30,7 +30,8 @@ namespace prm::codec {
 
 // Format version written by this encoder (§3.2). A decoder accepts major version kFormatMajor only.
 constexpr uint8_t kFormatMajor = 1;
-constexpr uint8_t kFormatMinor = 0;
+constexpr uint8_t kFormatMinor = 0;     // general-path streams (§3.2)
+constexpr uint8_t kFormatMinorPrm = 1;  // streams with the PRM sections 3 and 4 (§3.2)
 
 enum class Error : uint8_t {
   ok = 0,
@@ -100,7 +101,9 @@ struct EncodeReport {
   size_t total_bytes = 0;
   size_t header_bytes = 0;        // magic, version, header (§3.3)
   size_t connectivity_bytes = 0;  // section 1 payload (§6.3)
-  size_t position_bytes = 0;      // section 2 payload (§10)
+  size_t position_bytes = 0;      // section 2 payload (§10): all vertices, or a PRM's vertices outside the patches
+  size_t irregular_bytes = 0;     // section 3 payload (§7): the irregular triangles (LERS), PRM streams only
+  size_t patch_bytes = 0;         // section 4 payload (§8-§9): patch headers and heights, PRM streams only
   size_t framing_bytes = 0;       // section ids, lengths, CRC
   uint32_t vertices = 0;          // encoded (= decoded) vertex count
   uint32_t triangles = 0;
@@ -108,6 +111,11 @@ struct EncodeReport {
   uint32_t holes = 0;             // boundary loops closed by a dummy vertex (§6.7)
   uint32_t handles = 0;           // sum of component genera (§6.4.6)
   uint32_t unreferenced_dropped = 0;
+  // PRM streams (encode_prm): what the encoder's regularity check found (§7.1) and the chosen height depth (§9.4).
+  uint32_t regular_triangles = 0;
+  uint32_t regular_patches = 0;
+  uint32_t patch_vertices = 0;   // vertices whose positions the patches section carries
+  int height_depth = -1;         // -1: not a PRM stream
   // Decoded vertex k is input vertex vertex_order[k]; decoded triangle k is input triangle triangle_order[k], with
   // its corners rotated so that decoded corner 0 is input corner triangle_rotation[k] (0..2).
   std::vector<uint32_t> vertex_order;
@@ -128,6 +136,21 @@ Result<std::vector<uint8_t>> encode(const double* xyz, size_t num_vertices, cons
 Result<std::vector<uint8_t>> encode_quantized(const uint32_t* q, size_t num_vertices, const uint32_t* triangles,
                                               size_t num_triangles, const Frame& frame,
                                               EncodeReport* report = nullptr);
+
+// A piecewise regular mesh (spec §7-§9): positions pre-quantized in the frame whose lattices the mesh was built on
+// (docs/ARCHITECTURE.md: lattice point (i, j) of axis pair k at (U, W) = (A i + B j, C j), quantized units).
+struct PrmOptions {
+  int64_t grid = 0;       // the lattice's grid size A in quantized units, 2 .. 2^bits
+  int height_depth = -1;  // §9.4 levels of difference patches, 0..6; -1: the encoder tries them all, keeps the best
+};
+
+// Encodes a PRM: the encoder checks which triangles are regular (§7.1: three lattice neighbours forming a grid
+// triangle that faces its axis), sends the others by LERS traversals (§7), the regular patches' headers and
+// heights (§8, §9) and the remaining vertices by prediction (§10). A mesh without regular triangles is encoded as
+// encode_quantized does. decode() reads both.
+Result<std::vector<uint8_t>> encode_prm(const uint32_t* q, size_t num_vertices, const uint32_t* triangles,
+                                        size_t num_triangles, const Frame& frame, const PrmOptions& options,
+                                        EncodeReport* report = nullptr);
 
 // §4.1 Limits the caller sets; a stream asking for more is rejected with count_exceeds_limit before allocation.
 struct DecodeLimits {

@@ -1,0 +1,101 @@
+// §8-§9 The patches section, decoder side: the mirror of patch_encode.cpp. Every decoded value is checked before
+// it is used: axis and alignment in 0..5, lattice coordinates consistent over the patch and with vertices earlier
+// patches placed, positions inside the header's bounding box.
+#include <memory>
+#include <string>
+
+#include "patch_shared.h"
+#include "patches.h"
+#include "range_decoder.h"
+#include "status.h"
+
+namespace prm::codec {
+
+Status read_patches(const uint8_t* data, size_t size, uint64_t offset, const ClosedMesh& mesh, int bits,
+                    const std::array<uint32_t, 3>& lo, const std::array<uint32_t, 3>& hi,
+                    const std::vector<uint8_t>& cls, std::vector<uint32_t>& q, std::vector<uint8_t>& known) {
+  q.assign(size_t{3} * mesh.num_vertices, 0);
+  known.assign(mesh.num_vertices, 0);
+  if (size < 4) return make_status(Error::truncated, "5.6", offset + size, "patch data shorter than 4 bytes");
+  RangeDecoder rc;
+  rc.init(data, size);
+  auto fail = [&](Error e, const char* section, const std::string& what) {
+    return make_status(rc.failed() ? Error::truncated : e, section, offset + rc.consumed(), what);
+  };
+  // §8.4 Grid_Size and Height_Depth.
+  const int64_t grid = rc.decode_direct(kGridBits);
+  const int depth = static_cast<int>(rc.decode_direct(3));
+  if (grid < 2 || grid > (int64_t{1} << bits)) return fail(Error::bad_section, "8.4", "Grid_Size out of range");
+  if (depth > kMaxHeightDepth) return fail(Error::bad_section, "9.4", "Height_Depth above 6");
+  const LatticeConstants lc = LatticeConstants::of(grid);
+  const PatchSet ps = build_patches(mesh, cls);
+  auto models = std::make_unique<PatchModels>();
+  auto bit = [&](BitModel& m, bool) { return rc.decode_bit(m) != 0; };
+  auto value = [&](SignedIntModel& m, int max_class, int64_t, int64_t& out) { return decode_signed(rc, m, max_class, out); };
+  std::vector<uint32_t> local(mesh.num_vertices, UINT32_MAX), global, queue;
+  Level level;
+  std::vector<std::vector<int64_t>> f;
+  std::vector<LevelPlan> plans;
+  std::vector<uint8_t> scratch;
+  std::array<int64_t, 2> previous{0, 0};
+  const int64_t coord_bound = int64_t{1} << (bits + 1);
+  for (size_t p = 0; p < ps.size(); ++p) {
+    const std::string which = "patch " + std::to_string(p);
+    // §8.4 The patch header.
+    const int axis = code_symbol8(models->axis, 0, bit);
+    int64_t di, dj;
+    if (!decode_signed(rc, models->base_i, bits + 2, di) || !decode_signed(rc, models->base_j, bits + 2, dj))
+      return fail(Error::bad_section, "8.4", which + ": base vertex out of range");
+    const std::array<int64_t, 2> base = {previous[0] + di, previous[1] + dj};
+    const int align = code_symbol8(models->align, 0, bit);
+    if (rc.failed()) return fail(Error::truncated, "5.5", "the patch data ends early");
+    if (axis > 5 || align > 5) return fail(Error::bad_section, "8.4", which + ": axis or alignment above 5");
+    if (base[0] <= -coord_bound || base[0] >= coord_bound || base[1] <= -coord_bound || base[1] >= coord_bound)
+      return fail(Error::bad_section, "8.4", which + ": base vertex out of range");
+    previous = base;
+    const int pair = axis / 2;
+    const size_t cu = static_cast<size_t>(pair_u(pair)), cw = static_cast<size_t>(pair_w(pair)),
+                 ch = static_cast<size_t>(pair);
+    // §8.3 Lattice coordinates, then base-plane positions.
+    if (!propagate_patch(mesh, ps, p, base, align, axis % 2 == 0, level, global, local)) {
+      for (uint32_t v : global) local[v] = UINT32_MAX;
+      return fail(Error::bad_position, "8.3", which + ": a vertex gets two lattice positions");
+    }
+    for (uint32_t v : global) local[v] = UINT32_MAX;
+    for (uint32_t l = 0; l < level.size(); ++l) {
+      const uint32_t v = global[l];
+      // |i|, |j| are bounded by the propagation from a bounded base (one step per triangle), so no overflow here.
+      const int64_t u = lc.a * level.coord[l][0] + lc.b * level.coord[l][1], w = lc.c * level.coord[l][1];
+      if (u < lo[cu] || u > hi[cu] || w < lo[cw] || w > hi[cw])
+        return fail(Error::bad_position, "8.3", which + ": vertex " + std::to_string(v) + " outside the bounding box");
+      if (known[v] && (q[3 * size_t{v} + cu] != u || q[3 * size_t{v} + cw] != w))
+        return fail(Error::bad_position, "8.3", which + ": vertex " + std::to_string(v) + " placed twice, differently");
+    }
+    // §9 Heights.
+    if (!code_heights(level, depth, bits, models->heights, f, plans, scratch, queue, false, value))
+      return fail(Error::bad_position, "9.3", which + ": a height difference out of range");
+    if (rc.failed()) return fail(Error::truncated, "5.5", "the patch data ends early");
+    for (uint32_t l = 0; l < level.size(); ++l) {
+      const uint32_t v = global[l];
+      const int64_t h = f[0][l];
+      if (h < lo[ch] || h > hi[ch])
+        return fail(Error::bad_position, "9.3", which + ": vertex " + std::to_string(v) + " height outside the bounding box");
+      const int64_t u = lc.a * level.coord[l][0] + lc.b * level.coord[l][1], w = lc.c * level.coord[l][1];
+      if (known[v]) {
+        if (q[3 * size_t{v} + ch] != h)
+          return fail(Error::bad_position, "9.3", which + ": vertex " + std::to_string(v) + " placed twice, differently");
+        continue;
+      }
+      known[v] = 1;
+      q[3 * size_t{v} + cu] = static_cast<uint32_t>(u);
+      q[3 * size_t{v} + cw] = static_cast<uint32_t>(w);
+      q[3 * size_t{v} + ch] = static_cast<uint32_t>(h);
+    }
+  }
+  if (!rc.finish())
+    return rc.failed() ? make_status(Error::truncated, "5.5", offset + size, "the patch data ends early")
+                       : make_status(Error::trailing_bytes, "5.6", offset + rc.consumed(), "bytes after the last patch");
+  return ok_status();
+}
+
+}  // namespace prm::codec

@@ -1,0 +1,181 @@
+// §8-§9 The patches section, shared by patch_encode.cpp and patch_decode.cpp: models, the lattice propagation over
+// a patch (§8.3) and the height coding by recursive difference patches (§9), each written once as a template over
+// a "coder" that encodes the truth (encoder) or decodes (decoder), so both sides walk the same steps.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "clers.h"
+#include "difference_patch.h"
+#include "prm_lattice.h"
+#include "regular_patches.h"
+#include "signed_int_model.h"
+
+namespace prm::codec {
+
+constexpr int kMaxHeightDepth = 6;  // §9.4 Height_Depth 0..6
+constexpr int kGridBits = 21;       // §8.4 Grid_Size: 21 direct bits
+
+struct HeightModels {
+  SignedIntModel final_[kMaxHeightDepth + 1];
+  SignedIntModel base[kMaxHeightDepth];
+  SignedIntModel bridge[kMaxHeightDepth];
+};
+
+struct PatchModels {
+  BitModel axis[8];
+  BitModel align[8];
+  SignedIntModel base_i, base_j;
+  HeightModels heights;
+};
+
+// §8.4 A symbol 0..7 as three modelled bits, most significant first, with a binary tree of models.
+template <typename Coder>
+int code_symbol8(BitModel (&tree)[8], int truth, Coder& bit) {
+  int node = 1;
+  for (int k = 2; k >= 0; --k) node = node << 1 | (bit(tree[node], ((truth >> k) & 1) != 0) ? 1 : 0);
+  return node - 8;
+}
+
+// §8.3 Lattice coordinates of the vertices of one patch: local vertex ids in first-appearance order over the
+// patch's triangles (patch order, corners 0, 1, 2), lattice coordinates propagated from the first triangle, where
+// corner 0 is at `base` and corner 1 at base + direction `align`. Fills `level` (coordinates, local triangles),
+// `global` (local -> mesh vertex) and `local` (mesh vertex -> local id, for the vertices of this patch; the caller
+// resets the entries it set). Returns false on a lattice conflict: a vertex reached with two coordinates.
+inline bool propagate_patch(const ClosedMesh& mesh, const PatchSet& ps, size_t p, const std::array<int64_t, 2>& base,
+                            int align, bool positive, Level& level, std::vector<uint32_t>& global,
+                            std::vector<uint32_t>& local) {
+  constexpr uint32_t kNone = UINT32_MAX;
+  const uint32_t* cv = mesh.corner_vertex.data();
+  level.coord.clear();
+  level.tris.clear();
+  global.clear();
+  auto id_of = [&](uint32_t v) {
+    if (local[v] == kNone) {
+      local[v] = static_cast<uint32_t>(global.size());
+      global.push_back(v);
+      level.coord.push_back({0, 0});
+    }
+    return local[v];
+  };
+  std::vector<uint8_t> set;  // per local id: coordinates assigned
+  for (uint32_t r = ps.start[p]; r < ps.start[p + 1]; ++r) {
+    const uint32_t t = ps.order[r];
+    level.tris.push_back({id_of(cv[3 * t]), id_of(cv[3 * t + 1]), id_of(cv[3 * t + 2])});
+  }
+  set.assign(global.size(), 0);
+  auto assign = [&](uint32_t id, const std::array<int64_t, 2>& c) {
+    if (set[id]) return level.coord[id] == c;
+    set[id] = 1;
+    level.coord[id] = c;
+    return true;
+  };
+  const auto& t0 = level.tris[0];
+  const std::array<int64_t, 2> c1 = {base[0] + kDirection[static_cast<size_t>(align)][0],
+                                     base[1] + kDirection[static_cast<size_t>(align)][1]};
+  assign(t0[0], base);
+  if (!assign(t0[1], c1)) return false;
+  if (!assign(t0[2], third_corner(base, c1, positive))) return false;
+  // Breadth-first patch order: every later triangle shares an edge with an earlier one.
+  for (size_t r = 1; r < level.tris.size(); ++r) {
+    const auto& t = level.tris[r];
+    int k = 0;
+    while (k < 3 && !(set[t[k]] && set[t[(k + 1) % 3]])) ++k;
+    if (k == 3) return false;
+    const uint32_t x = t[k], y = t[(k + 1) % 3], z = t[(k + 2) % 3];
+    if (!assign(z, third_corner(level.coord[x], level.coord[y], positive))) return false;
+  }
+  return true;
+}
+
+// §9.3 Heights of one patch. f[0] holds the heights (encoder: input; decoder: output). `value(model, max_class,
+// truth, out)` codes one signed integer. Returns false when a decoded value breaks a bound (§9.3: |f_k| < 2^(bits+k+1)).
+template <typename Value>
+bool code_heights(const Level& level0, int depth, int bits, HeightModels& m, std::vector<std::vector<int64_t>>& f,
+                  std::vector<LevelPlan>& plans, std::vector<uint8_t>& known, std::vector<uint32_t>& queue,
+                  bool encoder, Value& value) {
+  // §9.2 The levels, top-down (values are not needed to build them).
+  plans.resize(static_cast<size_t>(depth));
+  const Level* level = &level0;
+  for (int k = 0; k < depth; ++k) {
+    plan_level(*level, k % 3, plans[static_cast<size_t>(k)]);
+    level = &plans[static_cast<size_t>(k)].child;
+  }
+  f.resize(static_cast<size_t>(depth) + 1);
+  auto level_size = [&](int k) { return k == 0 ? level0.size() : plans[static_cast<size_t>(k - 1)].child.size(); };
+  for (int k = 0; k <= depth; ++k) f[static_cast<size_t>(k)].resize(level_size(k));
+  if (encoder)  // f_{k+1} on the d-edges of level k: f_k(end) - f_k(start)
+    for (int k = 0; k < depth; ++k) {
+      const auto& dedge = plans[static_cast<size_t>(k)].dedge;
+      for (size_t e = 0; e < dedge.size(); ++e)
+        f[static_cast<size_t>(k) + 1][e] = f[static_cast<size_t>(k)][dedge[e][1]] - f[static_cast<size_t>(k)][dedge[e][0]];
+    }
+  auto bound = [&](int k) { return int64_t{1} << (bits + k + 1); };
+  auto in_bound = [&](int k, int64_t v) { return v > -bound(k) && v < bound(k); };
+  // §9.3 The deepest level's values, explicitly.
+  {
+    std::vector<int64_t>& fd = f[static_cast<size_t>(depth)];
+    for (size_t v = 0; v < fd.size(); ++v) {
+      int64_t out;
+      if (!value(m.final_[depth], bits + depth + 1, fd[v], out) || !in_bound(depth, out)) return false;
+      fd[v] = out;
+    }
+  }
+  // §9.3 Each level from the one below: base values, bridges, chains.
+  for (int k = depth - 1; k >= 0; --k) {
+    const LevelPlan& pl = plans[static_cast<size_t>(k)];
+    std::vector<int64_t>& fk = f[static_cast<size_t>(k)];
+    const std::vector<int64_t>& below = f[static_cast<size_t>(k) + 1];
+    const uint32_t n = static_cast<uint32_t>(fk.size());
+    known.assign(n, 0);
+    queue.clear();
+    // The chain through v (whose value is set): values along it from the differences, vertices queued in order.
+    auto chain = [&](uint32_t v) {
+      uint32_t s = v;
+      while (pl.in_edge[s] != UINT32_MAX) {
+        const uint32_t e = pl.in_edge[s];
+        const uint32_t a = pl.dedge[e][0];
+        fk[a] = fk[s] - below[e];
+        if (!in_bound(k, fk[a])) return false;
+        s = a;
+      }
+      for (uint32_t u = s;;) {
+        known[u] = 1;
+        queue.push_back(u);
+        const uint32_t e = pl.out_edge[u];
+        if (e == UINT32_MAX) break;
+        const uint32_t b = pl.dedge[e][1];
+        if (b != v) {
+          fk[b] = fk[u] + below[e];
+          if (!in_bound(k, fk[b])) return false;
+        }
+        u = b;
+      }
+      return true;
+    };
+    for (uint32_t v0 = 0; v0 < n; ++v0) {
+      if (known[v0]) continue;
+      int64_t out;
+      if (!value(m.base[k], bits + k + 1, fk[v0], out) || !in_bound(k, out)) return false;
+      fk[v0] = out;
+      size_t head = queue.size();
+      if (!chain(v0)) return false;
+      while (head < queue.size()) {
+        const uint32_t u = queue[head++];
+        for (uint32_t r = pl.nbr_start[u]; r < pl.nbr_start[u + 1]; ++r) {
+          const uint32_t w = pl.nbr[r];
+          if (known[w]) continue;
+          if (!value(m.bridge[k], bits + k + 2, fk[w] - fk[u], out)) return false;
+          fk[w] = fk[u] + out;
+          if (!in_bound(k, fk[w])) return false;
+          if (!chain(w)) return false;
+        }
+      }
+    }
+  }
+  return true;
+}
+
+}  // namespace prm::codec

@@ -1,0 +1,39 @@
+// §7-§9 The PRM sections' interface for the container code (codec_api.cpp): the encoder's regularity check, and
+// the patches section (§8 patch headers, §9 heights) on both sides.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "clers.h"
+#include "prm/codec.h"
+
+namespace prm::codec {
+
+// §7.1 The encoder's regularity check, from the quantized positions cq (3 per closed-mesh vertex) and the grid
+// size A: a triangle without dummy vertices is regular for axis a when its three vertices are lattice points of
+// pair a / 2 (§8.1) forming a unit grid triangle, counter-clockwise for a even, clockwise for a odd (the triangle
+// faces the axis). The lowest pair wins. Then, until no two regular triangles of different axes share an edge,
+// both are made irregular (a patch has one axis, §8.2). tri_axis: 0..5, or -1 for irregular and dummy triangles.
+void classify_triangles(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, int64_t grid,
+                        std::vector<int8_t>& tri_axis);
+
+struct PatchStats {
+  uint32_t patches = 0;
+  uint32_t patch_vertices = 0;
+};
+
+// §8-§9 Encoder: the patches section for the regular triangles (tri_axis >= 0) at height depth `depth`
+// (0..kMaxHeightDepth). Sets known[v] = 1 for every vertex of a patch (their positions are in this section).
+Status write_patches(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, int bits, int64_t grid,
+                     const std::vector<int8_t>& tri_axis, int depth, std::vector<uint8_t>& payload,
+                     std::vector<uint8_t>& known, PatchStats* stats);
+
+// §8-§9 Decoder: positions of the patch vertices into q (3 per closed-mesh vertex), known[v] = 1 for them.
+// cls: per triangle kRegular / kIrregular / kDummyTriangle (§7).
+Status read_patches(const uint8_t* data, size_t size, uint64_t offset, const ClosedMesh& mesh, int bits,
+                    const std::array<uint32_t, 3>& lo, const std::array<uint32_t, 3>& hi,
+                    const std::vector<uint8_t>& cls, std::vector<uint32_t>& q, std::vector<uint8_t>& known);
+
+}  // namespace prm::codec
