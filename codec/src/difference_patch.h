@@ -33,68 +33,104 @@ struct LevelPlan {
   std::vector<uint32_t> out_edge, in_edge;        // per vertex: d-edge starting / ending there, or UINT32_MAX
   std::vector<uint32_t> nbr_start, nbr;           // CSR: non-d neighbours per vertex
   Level child;
+  // Scratch, kept between calls to spare allocations.
+  std::vector<uint32_t> side_edge, bucket_start, bucket, group_first, fill, side_lo, side_hi, edge_dnum;
+  std::vector<std::array<uint32_t, 2>> ends;
+  std::vector<uint8_t> tri_dside;
+  std::vector<std::array<uint32_t, 2>> edge_sides;
+  std::vector<uint8_t> edge_count;
 };
 
 inline void plan_level(const Level& level, int d, LevelPlan& out) {
   const uint32_t nv = level.size();
   const uint32_t nt = static_cast<uint32_t>(level.tris.size());
   constexpr uint32_t kNone = UINT32_MAX;
-  // Unique edges with their first appearance; per triangle side its edge id.
-  struct Side {
-    uint64_t key;
-    uint32_t first;  // 3 * t + k
-  };
-  std::vector<Side> sides;
-  sides.reserve(size_t{3} * nt);
-  for (uint32_t t = 0; t < nt; ++t)
+  // Unique edges (unordered vertex pairs) numbered by first appearance over the sides 3t + k; per side its edge;
+  // per edge its first two sides and how many sides it has (capped at 3). Sides are bucketed by their smaller
+  // vertex (a stable counting sort), then grouped by the larger one inside each bucket: linear in the sides.
+  const size_t num_sides = size_t{3} * nt;
+  auto& side_edge = out.side_edge;
+  auto& edge_sides = out.edge_sides;
+  auto& edge_count = out.edge_count;
+  auto& bucket_start = out.bucket_start;
+  auto& bucket = out.bucket;
+  auto& group_first = out.group_first;
+  side_edge.resize(num_sides);
+  group_first.assign(num_sides, kNone);
+  bucket_start.assign(size_t{nv} + 1, 0);
+  auto& side_lo = out.side_lo;
+  auto& side_hi = out.side_hi;
+  side_lo.resize(num_sides);
+  side_hi.resize(num_sides);
+  for (uint32_t t = 0; t < nt; ++t) {
+    const auto& tri = level.tris[t];
     for (uint32_t k = 0; k < 3; ++k) {
-      const uint32_t a = level.tris[t][k], b = level.tris[t][(k + 1) % 3];
-      const uint64_t key = uint64_t{std::min(a, b)} << 32 | std::max(a, b);
-      sides.push_back({key, 3 * t + k});
+      const uint32_t a = tri[k], b = tri[k == 2 ? 0 : k + 1];
+      side_lo[3 * t + k] = a < b ? a : b;
+      side_hi[3 * t + k] = a < b ? b : a;
     }
-  std::vector<uint32_t> by_key(sides.size());
-  for (uint32_t s = 0; s < by_key.size(); ++s) by_key[s] = s;
-  std::sort(by_key.begin(), by_key.end(), [&](uint32_t x, uint32_t y) {
-    return sides[x].key != sides[y].key ? sides[x].key < sides[y].key : sides[x].first < sides[y].first;
-  });
-  // side -> edge (numbered by first appearance), edge -> its sides (up to 2 recorded; more marks it crowded).
-  std::vector<uint32_t> side_edge(sides.size(), kNone);
-  std::vector<uint32_t> edge_first_side;  // per edge (numbered in key order for now)
-  std::vector<uint32_t> key_edge(by_key.size());
-  for (size_t r = 0; r < by_key.size(); ++r) {
-    if (r == 0 || sides[by_key[r]].key != sides[by_key[r - 1]].key) edge_first_side.push_back(sides[by_key[r]].first);
-    key_edge[r] = static_cast<uint32_t>(edge_first_side.size() - 1);
   }
-  // Renumber edges by first appearance.
-  const uint32_t ne = static_cast<uint32_t>(edge_first_side.size());
-  std::vector<uint32_t> rank(ne);
+  auto lo_of = [&](uint32_t s) { return side_lo[s]; };
+  auto hi_of = [&](uint32_t s) { return side_hi[s]; };
+  for (uint32_t s = 0; s < num_sides; ++s) ++bucket_start[lo_of(s) + 1];
+  for (uint32_t v = 0; v < nv; ++v) bucket_start[v + 1] += bucket_start[v];
+  bucket.resize(num_sides);
   {
-    std::vector<uint32_t> idx(ne);
-    for (uint32_t e = 0; e < ne; ++e) idx[e] = e;
-    std::sort(idx.begin(), idx.end(), [&](uint32_t x, uint32_t y) { return edge_first_side[x] < edge_first_side[y]; });
-    for (uint32_t r = 0; r < ne; ++r) rank[idx[r]] = r;
+    std::vector<uint32_t>& fill = out.fill;
+    fill.assign(bucket_start.begin(), bucket_start.end() - 1);
+    for (uint32_t s = 0; s < num_sides; ++s) bucket[fill[lo_of(s)]++] = s;
   }
-  std::vector<std::array<uint32_t, 2>> edge_sides(ne, {kNone, kNone});
-  std::vector<uint8_t> edge_count(ne, 0);
-  for (size_t r = 0; r < by_key.size(); ++r) {
-    const uint32_t e = rank[key_edge[r]];
-    const uint32_t s = sides[by_key[r]].first;
-    side_edge[s] = e;
-    if (edge_count[e] < 2) edge_sides[e][edge_count[e]] = s;
-    if (edge_count[e] < 3) ++edge_count[e];
+  for (uint32_t v = 0; v < nv; ++v) {
+    const uint32_t b0 = bucket_start[v], b1 = bucket_start[v + 1];
+    if (b1 - b0 > 64)  // a crowded vertex (hostile input): sort its bucket by the other end, stably
+      std::stable_sort(bucket.begin() + b0, bucket.begin() + b1, [&](uint32_t x, uint32_t y) { return hi_of(x) < hi_of(y); });
+    for (uint32_t r = b0; r < b1; ++r) {
+      const uint32_t s = bucket[r];
+      if (group_first[s] != kNone) continue;
+      group_first[s] = s;  // the smallest side of its group: buckets keep increasing side order
+      const uint32_t other = hi_of(s);
+      for (uint32_t r2 = r + 1; r2 < b1; ++r2) {
+        const uint32_t o = hi_of(bucket[r2]);
+        if (o == other) group_first[bucket[r2]] = s;
+        else if (b1 - b0 > 64 && o > other) break;  // sorted bucket: no more of this group
+      }
+    }
+  }
+  uint32_t ne = 0;
+  for (uint32_t s = 0; s < num_sides; ++s) ne += group_first[s] == s;
+  edge_sides.resize(ne);
+  edge_count.resize(ne);
+  for (uint32_t s = 0, next = 0; s < num_sides; ++s) {
+    const uint32_t g = group_first[s];
+    if (g == s) {
+      side_edge[s] = next;
+      edge_sides[next][0] = s;
+      edge_sides[next][1] = kNone;
+      edge_count[next] = 1;
+      ++next;
+    } else {
+      const uint32_t e = side_edge[g];
+      side_edge[s] = e;
+      if (edge_count[e] < 2) edge_sides[e][1] = s;
+      if (edge_count[e] < 3) ++edge_count[e];
+    }
   }
   // Edge endpoints and directions.
-  std::vector<std::array<uint32_t, 2>> ends(ne);
+  auto& ends = out.ends;
+  ends.resize(ne);
   for (uint32_t e = 0; e < ne; ++e) {
     const uint32_t s = edge_sides[e][0];
     ends[e] = {level.tris[s / 3][s % 3], level.tris[s / 3][(s % 3 + 1) % 3]};
   }
   const auto& step = kDirection[static_cast<size_t>(d)];
-  std::vector<uint32_t> edge_dnum(ne, kNone);  // d-edge number of an edge
-  out.dedge.clear();
+  auto& edge_dnum = out.edge_dnum;  // d-edge number of an edge
+  edge_dnum.assign(ne, kNone);
+  out.dedge.resize(ne);  // at most one d-edge per edge; trimmed below
+  uint32_t num_d = 0;
   out.out_edge.assign(nv, kNone);
   out.in_edge.assign(nv, kNone);
-  std::vector<uint32_t> nbr_count(nv, 0);
+  auto& nbr_count = out.fill;
+  nbr_count.assign(nv, 0);
   for (uint32_t e = 0; e < ne; ++e) {
     uint32_t a = ends[e][0], b = ends[e][1];
     const int64_t di = level.coord[b][0] - level.coord[a][0], dj = level.coord[b][1] - level.coord[a][1];
@@ -107,19 +143,23 @@ inline void plan_level(const Level& level, int d, LevelPlan& out) {
     }
     // A chain is a path: a vertex starts and ends at most one d-edge (a second one is not a d-edge).
     if (is_d && out.out_edge[a] == kNone && out.in_edge[b] == kNone) {
-      edge_dnum[e] = static_cast<uint32_t>(out.dedge.size());
-      out.out_edge[a] = edge_dnum[e];
-      out.in_edge[b] = edge_dnum[e];
-      out.dedge.push_back({a, b});
+      edge_dnum[e] = num_d;
+      out.out_edge[a] = num_d;
+      out.in_edge[b] = num_d;
+      out.dedge[num_d][0] = a;
+      out.dedge[num_d][1] = b;
+      ++num_d;
     } else {
       ++nbr_count[ends[e][0]];
       ++nbr_count[ends[e][1]];
     }
   }
+  out.dedge.resize(num_d);
   out.nbr_start.assign(size_t{nv} + 1, 0);
   for (uint32_t v = 0; v < nv; ++v) out.nbr_start[v + 1] = out.nbr_start[v] + nbr_count[v];
   out.nbr.assign(out.nbr_start[nv], 0);
-  std::vector<uint32_t> fill(out.nbr_start.begin(), out.nbr_start.end() - 1);
+  auto& fill = out.fill;
+  fill.assign(out.nbr_start.begin(), out.nbr_start.end() - 1);
   for (uint32_t e = 0; e < ne; ++e) {
     if (edge_dnum[e] != kNone) continue;
     out.nbr[fill[ends[e][0]]++] = ends[e][1];
@@ -129,11 +169,18 @@ inline void plan_level(const Level& level, int d, LevelPlan& out) {
   Level& child = out.child;
   child.coord.resize(out.dedge.size());
   for (size_t k = 0; k < out.dedge.size(); ++k) child.coord[k] = level.coord[out.dedge[k][0]];
-  child.tris.clear();
+  child.tris.resize(nt);  // at most one per triangle; trimmed below
+  uint32_t num_child = 0;
+  // Per triangle: the side of its d-edge (0..2), or 3.
+  auto& tri_dside = out.tri_dside;
+  tri_dside.resize(nt);
+  for (uint32_t t = 0; t < nt; ++t) {
+    uint8_t k = 0;
+    while (k < 3 && edge_dnum[side_edge[3 * t + k]] == kNone) ++k;
+    tri_dside[t] = k;
+  }
   auto d_of_triangle = [&](uint32_t t) -> uint32_t {
-    for (uint32_t k = 0; k < 3; ++k)
-      if (edge_dnum[side_edge[3 * t + k]] != kNone) return edge_dnum[side_edge[3 * t + k]];
-    return kNone;
+    return tri_dside[t] < 3 ? edge_dnum[side_edge[3 * t + tri_dside[t]]] : kNone;
   };
   auto across = [&](uint32_t s) -> uint32_t {  // the other triangle of side s's edge, if exactly one
     const uint32_t e = side_edge[s];
@@ -142,15 +189,18 @@ inline void plan_level(const Level& level, int d, LevelPlan& out) {
     return other / 3;
   };
   for (uint32_t t = 0; t < nt; ++t) {
-    uint32_t k = 0;
-    while (k < 3 && edge_dnum[side_edge[3 * t + k]] == kNone) ++k;
+    const uint32_t k = tri_dside[t];
     if (k == 3) continue;
     const uint32_t n1 = across(3 * t + (k + 1) % 3), n2 = across(3 * t + (k + 2) % 3);
     if (n1 == kNone || n2 == kNone) continue;
     const uint32_t a = edge_dnum[side_edge[3 * t + k]], b = d_of_triangle(n1), c = d_of_triangle(n2);
     if (b == kNone || c == kNone || a == b || b == c || a == c) continue;
-    child.tris.push_back({a, b, c});
+    child.tris[num_child][0] = a;
+    child.tris[num_child][1] = b;
+    child.tris[num_child][2] = c;
+    ++num_child;
   }
+  child.tris.resize(num_child);
 }
 
 }  // namespace prm::codec

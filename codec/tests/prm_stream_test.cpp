@@ -1,0 +1,243 @@
+// The PRM sections (§7 irregular triangles, §8 patches, §9 heights, §10.2 seeded positions) on synthetic piecewise
+// regular meshes whose every position is known exactly: round trips at every height depth, the encoder's own
+// regularity check, the general-path fallback, and hostile variants of a PRM stream.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <map>
+#include <random>
+
+#include "crc32.h"
+#include "prm/codec.h"
+
+namespace prm::codec::test {
+namespace {
+
+struct QMesh {
+  std::vector<uint32_t> q;     // 3 per vertex, quantized
+  std::vector<uint32_t> tris;  // 3 per triangle
+  size_t nv() const { return q.size() / 3; }
+  size_t nt() const { return tris.size() / 3; }
+};
+
+// A closed "pillow" on the lattice of axis pair 2 (height z), grid A = 8 (B = 4, C = 7): a hexagon of radius r of
+// lattice points facing +z on top, the same hexagon facing -z below, and a band of (irregular) side triangles.
+// `perturb` vertices of the top are moved off the lattice by one step in x: their triangles become irregular.
+QMesh pillow(int r, int perturb, uint32_t seed = 1) {
+  const int64_t A = 8, B = 4, C = 7, shift = 40;
+  QMesh m;
+  std::map<std::pair<int, int>, uint32_t> top, bottom;
+  auto inside = [&](int i, int j) { return std::abs(i) <= r && std::abs(j) <= r && std::abs(i + j) <= r; };
+  auto add = [&](int i, int j, int64_t h) {
+    const int64_t ii = i + shift, jj = j + shift;
+    m.q.push_back(static_cast<uint32_t>(A * ii + B * jj));
+    m.q.push_back(static_cast<uint32_t>(C * jj));
+    m.q.push_back(static_cast<uint32_t>(h));
+    return static_cast<uint32_t>(m.nv() - 1);
+  };
+  for (int j = -r; j <= r; ++j)
+    for (int i = -r; i <= r; ++i)
+      if (inside(i, j)) {
+        top[{i, j}] = add(i, j, 2000 + std::lround(90 * std::sin(0.3 * i) * std::cos(0.2 * j) + 3 * i));
+        bottom[{i, j}] = add(i, j, 1000 - std::lround(40 * std::cos(0.25 * i + 0.1 * j)));
+      }
+  auto tri = [&](uint32_t a, uint32_t b, uint32_t c) { m.tris.insert(m.tris.end(), {a, b, c}); };
+  for (int j = -r; j <= r; ++j)
+    for (int i = -r; i <= r; ++i) {
+      if (inside(i, j) && inside(i + 1, j) && inside(i, j + 1)) {
+        tri(top[{i, j}], top[{i + 1, j}], top[{i, j + 1}]);
+        tri(bottom[{i, j}], bottom[{i, j + 1}], bottom[{i + 1, j}]);
+      }
+      if (inside(i + 1, j) && inside(i + 1, j + 1) && inside(i, j + 1)) {
+        tri(top[{i + 1, j}], top[{i + 1, j + 1}], top[{i, j + 1}]);
+        tri(bottom[{i + 1, j}], bottom[{i, j + 1}], bottom[{i + 1, j + 1}]);
+      }
+    }
+  // The hexagon's boundary, counter-clockwise, then the band: outward-facing quads split in two.
+  std::vector<std::pair<int, int>> ring;
+  const int dir[6][2] = {{1, 0}, {0, 1}, {-1, 1}, {-1, 0}, {0, -1}, {1, -1}};
+  int ci = r, cj = -r;
+  for (int side = 1; side < 7; ++side)
+    for (int s = 0; s < r; ++s) {
+      ring.push_back({ci, cj});
+      ci += dir[side % 6][0];
+      cj += dir[side % 6][1];
+    }
+  for (size_t k = 0; k < ring.size(); ++k) {
+    const auto a = ring[k], b = ring[(k + 1) % ring.size()];
+    tri(top[b], top[a], bottom[a]);
+    tri(top[b], bottom[a], bottom[b]);
+  }
+  std::mt19937 rng(seed);
+  for (int k = 0; k < perturb; ++k) {
+    const int i = static_cast<int>(rng() % static_cast<uint32_t>(r)) - r / 2, j = static_cast<int>(rng() % static_cast<uint32_t>(r)) - r / 2;
+    if (inside(i, j)) m.q[3 * size_t{top[{i, j}]}] += 1;
+  }
+  return m;
+}
+
+Frame unit_frame() {
+  Frame f;
+  f.bits = 12;
+  f.origin = {0, 0, 0};
+  f.step = 1;
+  return f;
+}
+
+// decode(encode(m)) is m: the same quantized positions under the reported vertex order, the same triangles.
+void expect_round_trip(const QMesh& m, const std::vector<uint8_t>& stream, const EncodeReport& rep) {
+  const auto dec = decode(stream.data(), stream.size());
+  ASSERT_TRUE(dec.ok()) << dec.status.message << " (§" << dec.status.spec_section << ")";
+  const DecodedMesh& d = dec.value;
+  ASSERT_EQ(d.num_vertices(), m.nv());
+  ASSERT_EQ(d.num_triangles(), m.nt());
+  for (size_t k = 0; k < d.num_vertices(); ++k)
+    for (int a = 0; a < 3; ++a) ASSERT_EQ(d.quantized[3 * k + a], m.q[3 * size_t{rep.vertex_order[k]} + a]) << k;
+  for (size_t t = 0; t < d.num_triangles(); ++t) {
+    const uint32_t in = rep.triangle_order[t], rot = rep.triangle_rotation[t];
+    for (int c = 0; c < 3; ++c)
+      ASSERT_EQ(rep.vertex_order[d.triangles[3 * t + c]], m.tris[3 * size_t{in} + (rot + c) % 3]) << t;
+  }
+}
+
+TEST(PrmStream, PillowRoundTripsAtEveryHeightDepth) {
+  const QMesh m = pillow(12, 0);
+  size_t best = SIZE_MAX;
+  for (int depth = 0; depth <= 6; ++depth) {
+    PrmOptions o;
+    o.grid = 8;
+    o.height_depth = depth;
+    EncodeReport rep;
+    const auto enc = encode_prm(m.q.data(), m.nv(), m.tris.data(), m.nt(), unit_frame(), o, &rep);
+    ASSERT_TRUE(enc.ok()) << enc.status.message;
+    EXPECT_EQ(rep.height_depth, depth);
+    EXPECT_EQ(rep.regular_patches, 2u);  // top and bottom
+    EXPECT_EQ(rep.regular_triangles, m.nt() - 2 * 6 * 12);  // all but the band
+    EXPECT_EQ(rep.patch_vertices, m.nv());  // every vertex is on a patch
+    EXPECT_GT(rep.irregular_bytes, 0u);
+    expect_round_trip(m, enc.value, rep);
+    best = std::min(best, enc.value.size());
+  }
+  // The default tries every depth and keeps the smallest.
+  PrmOptions o;
+  o.grid = 8;
+  EncodeReport rep;
+  const auto enc = encode_prm(m.q.data(), m.nv(), m.tris.data(), m.nt(), unit_frame(), o, &rep);
+  ASSERT_TRUE(enc.ok());
+  EXPECT_EQ(enc.value.size(), best);
+  // A PRM stream is far smaller than the general path on the same mesh.
+  const auto general = encode_quantized(m.q.data(), m.nv(), m.tris.data(), m.nt(), unit_frame());
+  ASSERT_TRUE(general.ok());
+  EXPECT_LT(enc.value.size(), general.value.size());
+}
+
+TEST(PrmStream, OffLatticeVerticesArePredicted) {
+  const QMesh m = pillow(12, 25, 3);
+  PrmOptions o;
+  o.grid = 8;
+  EncodeReport rep;
+  const auto enc = encode_prm(m.q.data(), m.nv(), m.tris.data(), m.nt(), unit_frame(), o, &rep);
+  ASSERT_TRUE(enc.ok()) << enc.status.message;
+  EXPECT_LT(rep.patch_vertices, m.nv());        // the moved vertices are coded by prediction (§10)
+  EXPECT_LT(rep.regular_triangles, m.nt() - 2 * 6 * 12);
+  EXPECT_GT(rep.position_bytes, 0u);
+  expect_round_trip(m, enc.value, rep);
+}
+
+TEST(PrmStream, WrongGridMeansGeneralPath) {
+  // Grid 7 puts no triangle on the lattice: the stream is the general path's, byte for byte.
+  const QMesh m = pillow(6, 0);
+  PrmOptions o;
+  o.grid = 7;
+  EncodeReport rep;
+  const auto enc = encode_prm(m.q.data(), m.nv(), m.tris.data(), m.nt(), unit_frame(), o, &rep);
+  ASSERT_TRUE(enc.ok());
+  EXPECT_EQ(rep.regular_triangles, 0u);
+  EXPECT_EQ(rep.height_depth, -1);
+  const auto general = encode_quantized(m.q.data(), m.nv(), m.tris.data(), m.nt(), unit_frame());
+  EXPECT_EQ(enc.value, general.value);
+}
+
+TEST(PrmStream, BadOptionsAreRefused) {
+  const QMesh m = pillow(3, 0);
+  for (int64_t grid : {int64_t{0}, int64_t{1}, int64_t{1} << 13}) {
+    PrmOptions o;
+    o.grid = grid;
+    EXPECT_EQ(encode_prm(m.q.data(), m.nv(), m.tris.data(), m.nt(), unit_frame(), o).status.error,
+              Error::invalid_argument);
+  }
+  PrmOptions o;
+  o.grid = 8;
+  o.height_depth = 7;
+  EXPECT_EQ(encode_prm(m.q.data(), m.nv(), m.tris.data(), m.nt(), unit_frame(), o).status.error, Error::invalid_argument);
+}
+
+void fix_crc(std::vector<uint8_t>& s) {
+  const uint32_t c = crc32(s.data(), s.size() - 4);
+  for (int i = 0; i < 4; ++i) s[s.size() - 4 + i] = static_cast<uint8_t>(c >> (8 * i));
+}
+
+// Every outcome of a hostile stream is a mesh or a named error; a mesh must reference its own vertices.
+void decode_any(const std::vector<uint8_t>& s) {
+  std::unique_ptr<uint8_t[]> buf(new uint8_t[s.size() ? s.size() : 1]);
+  if (!s.empty()) std::memcpy(buf.get(), s.data(), s.size());
+  const auto res = decode(buf.get(), s.size());
+  if (!res.ok()) {
+    EXPECT_NE(res.status.error, Error::internal) << res.status.message;
+    EXPECT_FALSE(res.status.message.empty());
+  } else {
+    for (uint32_t v : res.value.triangles) EXPECT_LT(v, res.value.num_vertices());
+  }
+}
+
+std::vector<uint8_t> small_prm_stream() {
+  const QMesh m = pillow(4, 3, 5);
+  PrmOptions o;
+  o.grid = 8;
+  EncodeReport rep;
+  auto enc = encode_prm(m.q.data(), m.nv(), m.tris.data(), m.nt(), unit_frame(), o, &rep);
+  EXPECT_TRUE(enc.ok());
+  EXPECT_GT(rep.regular_triangles, 0u);
+  return enc.value;
+}
+
+TEST(PrmStream, EveryByteFlippedWithTheCrcFixed) {
+  const std::vector<uint8_t> s = small_prm_stream();
+  size_t accepted = 0;
+  for (size_t i = 6; i + 4 < s.size(); ++i)
+    for (uint8_t x : {0x01, 0x10, 0x80, 0xFF}) {
+      std::vector<uint8_t> t = s;
+      t[i] ^= x;
+      fix_crc(t);
+      const auto res = decode(t.data(), t.size());
+      accepted += res.ok();
+      decode_any(t);
+    }
+  EXPECT_LT(accepted, 2 * s.size());  // most flips are caught by the sections' own checks
+}
+
+TEST(PrmStream, EveryTruncationAndRandomSections) {
+  const std::vector<uint8_t> s = small_prm_stream();
+  for (size_t len = 0; len < s.size(); ++len) {
+    std::vector<uint8_t> t(s.begin(), s.begin() + static_cast<long>(len));
+    EXPECT_FALSE(decode(t.data(), t.size()).ok()) << len;
+    if (len >= 10) {
+      t.resize(len + 4);
+      fix_crc(t);
+      decode_any(t);
+    }
+  }
+  std::mt19937 rng(11);
+  for (int trial = 0; trial < 3000; ++trial) {  // valid container prefix, random payload bytes
+    std::vector<uint8_t> t = s;
+    const size_t from = 60 + rng() % (s.size() - 64);
+    for (size_t i = from; i + 4 < t.size(); ++i) t[i] = static_cast<uint8_t>(rng());
+    fix_crc(t);
+    decode_any(t);
+  }
+}
+
+}  // namespace
+}  // namespace prm::codec::test
