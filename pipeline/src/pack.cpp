@@ -56,6 +56,7 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
     throw InputError("the piecewise regular mesh could not be encoded (a remesher or codec bug): " +
                      encoded.status.message + " (spec §" + encoded.status.spec_section + ")");
   out.stream = std::move(encoded.value);
+  if (out.repaired) out.repaired_input = std::move(closed);
   return out;
 }
 

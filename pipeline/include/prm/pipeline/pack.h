@@ -29,6 +29,7 @@ struct PackResult {
   remesh::RemeshResult remesh;  // the PRM, the error of the remeshed mesh, the grid search
   RepairReport repair;
   bool repaired = false;        // the input had holes, pinches or degenerate faces
+  Mesh repaired_input;          // what was remeshed when `repaired` (the input itself otherwise, not copied)
   double seconds_repair = 0, seconds_remesh = 0, seconds_encode = 0;
 };
 
