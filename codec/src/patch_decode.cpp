@@ -72,6 +72,7 @@ Status read_patches(const uint8_t* data, size_t size, uint64_t offset, const Clo
         return fail(Error::bad_position, "8.3", which + ": vertex " + std::to_string(v) + " placed twice, differently");
     }
     // §9 Heights.
+    build_levels(level, depth, plans);
     if (!code_heights(level, depth, bits, models->heights, f, plans, scratch, queue, false, value))
       return fail(Error::bad_position, "9.3", which + ": a height difference out of range");
     if (rc.failed()) return fail(Error::truncated, "5.5", "the patch data ends early");

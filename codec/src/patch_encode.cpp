@@ -117,6 +117,7 @@ Status write_patches(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, in
     // §9 Heights.
     f.assign(1, std::vector<int64_t>(level.size()));
     for (uint32_t l = 0; l < level.size(); ++l) f[0][l] = cq[3 * size_t{global[l]} + static_cast<size_t>(pair)];
+    build_levels(level, depth, plans);
     if (!code_heights(level, depth, bits, models->heights, f, plans, scratch, queue, true, value))
       return make_status(Error::internal, "9.3", 0, "height out of range in patch " + std::to_string(p));
     for (uint32_t l = 0; l < level.size(); ++l) {

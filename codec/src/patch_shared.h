@@ -90,19 +90,24 @@ inline bool propagate_patch(const ClosedMesh& mesh, const PatchSet& ps, size_t p
   return true;
 }
 
-// §9.3 Heights of one patch. f[0] holds the heights (encoder: input; decoder: output). `value(model, max_class,
-// truth, out)` codes one signed integer. Returns false when a decoded value breaks a bound (§9.3: |f_k| < 2^(bits+k+1)).
-template <typename Value>
-bool code_heights(const Level& level0, int depth, int bits, HeightModels& m, std::vector<std::vector<int64_t>>& f,
-                  std::vector<LevelPlan>& plans, std::vector<uint8_t>& known, std::vector<uint32_t>& queue,
-                  bool encoder, Value& value) {
-  // §9.2 The levels, top-down (values are not needed to build them).
+// §9.2 The levels of one patch, top-down (values are not needed to build them): plans[k] describes level k for
+// direction k mod 3 and holds level k + 1 as its child.
+inline void build_levels(const Level& level0, int depth, std::vector<LevelPlan>& plans) {
   plans.resize(static_cast<size_t>(depth));
   const Level* level = &level0;
   for (int k = 0; k < depth; ++k) {
     plan_level(*level, k % 3, plans[static_cast<size_t>(k)]);
     level = &plans[static_cast<size_t>(k)].child;
   }
+}
+
+// §9.3 Heights of one patch, over levels build_levels() made. f[0] holds the heights (encoder: input; decoder:
+// output). `value(model, max_class, truth, out)` codes one signed integer. Returns false when a decoded value breaks
+// a bound (§9.3: |f_k| < 2^(bits+k+1)).
+template <typename Value>
+bool code_heights(const Level& level0, int depth, int bits, HeightModels& m, std::vector<std::vector<int64_t>>& f,
+                  const std::vector<LevelPlan>& plans, std::vector<uint8_t>& known, std::vector<uint32_t>& queue,
+                  bool encoder, Value& value) {
   f.resize(static_cast<size_t>(depth) + 1);
   auto level_size = [&](int k) { return k == 0 ? level0.size() : plans[static_cast<size_t>(k - 1)].child.size(); };
   for (int k = 0; k <= depth; ++k) f[static_cast<size_t>(k)].resize(level_size(k));
