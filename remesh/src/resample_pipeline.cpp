@@ -1,5 +1,6 @@
 // Paper §2.2-2.4 in sequence: genericity nudge, per-relief slicing and constrained collapses (in parallel), loop fill,
 // seam optimization, labels.
+#include <map>
 #include <tbb/parallel_for.h>
 
 #include <algorithm>
@@ -256,6 +257,30 @@ PrmMesh load_prm_labels(Mesh mesh) {
   if (const Property* rg = mesh.find_face_property("regular")) prm.face_regular.assign(rg->values.begin(), rg->values.end());
   prm.mesh = std::move(mesh);
   return prm;
+}
+
+size_t count_regular_patches(const PrmMesh& prm) {
+  const Mesh& m = prm.mesh;
+  const size_t nf = m.triangles.size();
+  std::map<std::pair<uint32_t, uint32_t>, uint32_t> first_face;  // directed edge -> face
+  for (uint32_t f = 0; f < nf; ++f)
+    for (int k = 0; k < 3; ++k) first_face[{m.triangles[f][k], m.triangles[f][(k + 1) % 3]}] = f;
+  std::vector<uint32_t> parent(nf);
+  for (uint32_t f = 0; f < nf; ++f) parent[f] = f;
+  auto find = [&](uint32_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  for (uint32_t f = 0; f < nf; ++f) {
+    if (!prm.face_regular[f]) continue;
+    for (int k = 0; k < 3; ++k) {
+      auto it = first_face.find({m.triangles[f][(k + 1) % 3], m.triangles[f][k]});
+      if (it != first_face.end() && prm.face_regular[it->second]) parent[find(f)] = find(it->second);
+    }
+  }
+  size_t patches = 0;
+  for (uint32_t f = 0; f < nf; ++f) patches += prm.face_regular[f] && find(f) == f;
+  return patches;
 }
 
 }  // namespace prm::remesh

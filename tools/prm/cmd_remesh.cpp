@@ -45,7 +45,8 @@ void add_remesh_command(CLI::App& root) {
     const auto t0 = std::chrono::steady_clock::now();
     Mesh input = read_mesh(opt->input);
     RepairReport rep;
-    if (!validate_mesh(input).closed() || !validate_mesh(input).clean()) input = repair_mesh(input, &rep);
+    const MeshReport check = validate_mesh(input);
+    if (!check.closed() || !check.clean() || !check.manifold()) input = repair_mesh(input, &rep);
     remesh::RemeshOptions ro;
     ro.bits = opt->bits;
     ro.reliefs.tau = opt->tau;
@@ -83,6 +84,7 @@ void add_remesh_command(CLI::App& root) {
           {"grid_fraction", static_cast<double>(res.prm.lattice.A) * res.prm.frame.step / reference.diagonal()},
           {"tau", opt->tau}, {"reliefs", res.reliefs}, {"relief_boundary_length", res.relief_boundary_length},
           {"regular_faces", s.regular_faces}, {"regular_share", regular},
+          {"regular_patches", remesh::count_regular_patches(res.prm)},
           {"lattice_vertices", s.lattice_vertices},
           {"rms_error", res.error.rms}, {"max_error", res.error.max},
           {"unrepaired_triangles", s.unrepaired},

@@ -52,6 +52,10 @@ struct PrmMesh {
 
 PrmMesh resample_and_merge(const LayoutInput& layout, const ResampleOptions& options);
 
+// Regular patches: connected sets of regular triangles across shared edges (paper §3.3; the codec derives the
+// same sets, spec §8.2).
+size_t count_regular_patches(const PrmMesh& prm);
+
 // Attaches the labels as PLY properties and comments (docs/ARCHITECTURE.md) / reads them back.
 void store_prm_labels(PrmMesh& prm);
 PrmMesh load_prm_labels(Mesh mesh);  // throws prm::InputError when the labels are missing or inconsistent
