@@ -11,71 +11,26 @@
 
 #include "crc32.h"
 #include "prm/codec.h"
+#include "test_meshes.h"
 
 namespace prm::codec::test {
 namespace {
 
-struct QMesh {
-  std::vector<uint32_t> q;     // 3 per vertex, quantized
-  std::vector<uint32_t> tris;  // 3 per triangle
-  size_t nv() const { return q.size() / 3; }
-  size_t nt() const { return tris.size() / 3; }
-};
+using QMesh = QuantizedMesh;
 
-// A closed "pillow" on the lattice of axis pair 2 (height z), grid A = 8 (B = 4, C = 7): a hexagon of radius r of
-// lattice points facing +z on top, the same hexagon facing -z below, and a band of (irregular) side triangles.
-// `perturb` vertices of the top are moved off the lattice by one step in x: their triangles become irregular.
+int64_t bumpy_top(int i, int j, const void*) {
+  return 2000 + std::lround(90 * std::sin(0.3 * i) * std::cos(0.2 * j) + 3 * i);
+}
+int64_t bumpy_bottom(int i, int j, const void*) { return 1000 - std::lround(40 * std::cos(0.25 * i + 0.1 * j)); }
+
+// The pillow of test_meshes.h with grid A = 8 and `perturb` random top vertices moved off the lattice.
 QMesh pillow(int r, int perturb, uint32_t seed = 1) {
-  const int64_t A = 8, B = 4, C = 7, shift = 40;
-  QMesh m;
-  std::map<std::pair<int, int>, uint32_t> top, bottom;
-  auto inside = [&](int i, int j) { return std::abs(i) <= r && std::abs(j) <= r && std::abs(i + j) <= r; };
-  auto add = [&](int i, int j, int64_t h) {
-    const int64_t ii = i + shift, jj = j + shift;
-    m.q.push_back(static_cast<uint32_t>(A * ii + B * jj));
-    m.q.push_back(static_cast<uint32_t>(C * jj));
-    m.q.push_back(static_cast<uint32_t>(h));
-    return static_cast<uint32_t>(m.nv() - 1);
-  };
-  for (int j = -r; j <= r; ++j)
-    for (int i = -r; i <= r; ++i)
-      if (inside(i, j)) {
-        top[{i, j}] = add(i, j, 2000 + std::lround(90 * std::sin(0.3 * i) * std::cos(0.2 * j) + 3 * i));
-        bottom[{i, j}] = add(i, j, 1000 - std::lround(40 * std::cos(0.25 * i + 0.1 * j)));
-      }
-  auto tri = [&](uint32_t a, uint32_t b, uint32_t c) { m.tris.insert(m.tris.end(), {a, b, c}); };
-  for (int j = -r; j <= r; ++j)
-    for (int i = -r; i <= r; ++i) {
-      if (inside(i, j) && inside(i + 1, j) && inside(i, j + 1)) {
-        tri(top[{i, j}], top[{i + 1, j}], top[{i, j + 1}]);
-        tri(bottom[{i, j}], bottom[{i, j + 1}], bottom[{i + 1, j}]);
-      }
-      if (inside(i + 1, j) && inside(i + 1, j + 1) && inside(i, j + 1)) {
-        tri(top[{i + 1, j}], top[{i + 1, j + 1}], top[{i, j + 1}]);
-        tri(bottom[{i + 1, j}], bottom[{i, j + 1}], bottom[{i + 1, j + 1}]);
-      }
-    }
-  // The hexagon's boundary, counter-clockwise, then the band: outward-facing quads split in two.
-  std::vector<std::pair<int, int>> ring;
-  const int dir[6][2] = {{1, 0}, {0, 1}, {-1, 1}, {-1, 0}, {0, -1}, {1, -1}};
-  int ci = r, cj = -r;
-  for (int side = 1; side < 7; ++side)
-    for (int s = 0; s < r; ++s) {
-      ring.push_back({ci, cj});
-      ci += dir[side % 6][0];
-      cj += dir[side % 6][1];
-    }
-  for (size_t k = 0; k < ring.size(); ++k) {
-    const auto a = ring[k], b = ring[(k + 1) % ring.size()];
-    tri(top[b], top[a], bottom[a]);
-    tri(top[b], bottom[a], bottom[b]);
-  }
   std::mt19937 rng(seed);
-  for (int k = 0; k < perturb; ++k) {
-    const int i = static_cast<int>(rng() % static_cast<uint32_t>(r)) - r / 2, j = static_cast<int>(rng() % static_cast<uint32_t>(r)) - r / 2;
-    if (inside(i, j)) m.q[3 * size_t{top[{i, j}]}] += 1;
-  }
-  return m;
+  std::vector<std::array<int, 2>> moved;
+  for (int k = 0; k < perturb; ++k)
+    moved.push_back({static_cast<int>(rng() % static_cast<uint32_t>(r)) - r / 2,
+                     static_cast<int>(rng() % static_cast<uint32_t>(r)) - r / 2});
+  return lattice_pillow(r, 8, bumpy_top, bumpy_bottom, nullptr, moved);
 }
 
 Frame unit_frame() {

@@ -502,4 +502,60 @@ std::vector<std::string> list_files(const std::string& dir, const std::vector<st
   return out;
 }
 
+QuantizedMesh lattice_pillow(int r, int64_t grid, int64_t (*top)(int, int, const void*),
+                             int64_t (*bottom)(int, int, const void*), const void* user,
+                             const std::vector<std::array<int, 2>>& moved) {
+  // Lattice constants of spec §8.1; indices shifted so that every coordinate is positive.
+  const int64_t A = grid, B = grid / 2;
+  int64_t s3 = 0;
+  while ((s3 + 1) * (s3 + 1) <= 3 * grid * grid) ++s3;
+  const int64_t C = (s3 + 1) / 2, shift = r + 1;
+  QuantizedMesh m;
+  std::map<std::pair<int, int>, uint32_t> up, down;
+  auto inside = [&](int i, int j) { return std::abs(i) <= r && std::abs(j) <= r && std::abs(i + j) <= r; };
+  auto add = [&](int i, int j, int64_t h) {
+    const int64_t ii = i + shift, jj = j + shift;
+    m.q.push_back(static_cast<uint32_t>(A * ii + B * jj));
+    m.q.push_back(static_cast<uint32_t>(C * jj));
+    m.q.push_back(static_cast<uint32_t>(h));
+    return static_cast<uint32_t>(m.nv() - 1);
+  };
+  for (int j = -r; j <= r; ++j)
+    for (int i = -r; i <= r; ++i)
+      if (inside(i, j)) {
+        up[{i, j}] = add(i, j, top(i, j, user));
+        down[{i, j}] = add(i, j, bottom(i, j, user));
+      }
+  auto tri = [&](uint32_t a, uint32_t b, uint32_t c) { m.tris.insert(m.tris.end(), {a, b, c}); };
+  for (int j = -r; j <= r; ++j)
+    for (int i = -r; i <= r; ++i) {
+      if (inside(i, j) && inside(i + 1, j) && inside(i, j + 1)) {
+        tri(up[{i, j}], up[{i + 1, j}], up[{i, j + 1}]);
+        tri(down[{i, j}], down[{i, j + 1}], down[{i + 1, j}]);
+      }
+      if (inside(i + 1, j) && inside(i + 1, j + 1) && inside(i, j + 1)) {
+        tri(up[{i + 1, j}], up[{i + 1, j + 1}], up[{i, j + 1}]);
+        tri(down[{i + 1, j}], down[{i, j + 1}], down[{i + 1, j + 1}]);
+      }
+    }
+  // The rim, counter-clockwise from (r, -r), and the band: outward-facing quads split in two.
+  const int dir[6][2] = {{1, 0}, {0, 1}, {-1, 1}, {-1, 0}, {0, -1}, {1, -1}};
+  std::vector<std::pair<int, int>> ring;
+  int ci = r, cj = -r;
+  for (int side = 1; side < 7; ++side)
+    for (int s = 0; s < r; ++s) {
+      ring.push_back({ci, cj});
+      ci += dir[side % 6][0];
+      cj += dir[side % 6][1];
+    }
+  for (size_t k = 0; k < ring.size(); ++k) {
+    const auto a = ring[k], b = ring[(k + 1) % ring.size()];
+    tri(up[b], up[a], down[a]);
+    tri(up[b], down[a], down[b]);
+  }
+  for (const auto& ij : moved)
+    if (inside(ij[0], ij[1])) m.q[3 * size_t{up[{ij[0], ij[1]}]}] += 1;
+  return m;
+}
+
 }  // namespace prm::codec::test

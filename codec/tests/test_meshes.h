@@ -25,6 +25,22 @@ TestMesh concat(const std::vector<TestMesh>& parts);  // several components
 TestMesh tetrahedron();
 TestMesh single_triangle();
 
+// A mesh with quantized positions, for the PRM sections (§7-§9).
+struct QuantizedMesh {
+  std::vector<uint32_t> q;     // 3 per vertex
+  std::vector<uint32_t> tris;  // 3 per triangle
+  size_t nv() const { return q.size() / 3; }
+  size_t nt() const { return tris.size() / 3; }
+};
+
+// A closed "pillow" on the lattice of axis pair 2 (height z) with grid size `grid` (>= 2): a hexagon of radius r of
+// lattice points facing +z on top (heights top(i, j)), the same hexagon facing -z below (heights bottom(i, j)) and a
+// band of side triangles between their rims. Every top and bottom triangle is regular (§7.1), the band is not.
+// Each (i, j) listed in `moved` has its top vertex moved one step along x, off the lattice.
+QuantizedMesh lattice_pillow(int r, int64_t grid, int64_t (*top)(int, int, const void*),
+                             int64_t (*bottom)(int, int, const void*), const void* user,
+                             const std::vector<std::array<int, 2>>& moved);
+
 // Loads OFF/OBJ/PLY (ASCII or binary little-endian; PLY tristrips too). Throws std::runtime_error on failure.
 TestMesh load_mesh(const std::string& path);
 
