@@ -1,5 +1,5 @@
 // §9 Heights by recursive difference patches (paper §3.3): the construction of the levels, shared by the encoder
-// and the decoder (heights_encode.cpp, heights_decode.cpp). Everything is combinatorial: lattice coordinates only
+// and the decoder (patch_shared.h, patch_encode.cpp, patch_decode.cpp). Everything is combinatorial: lattice coordinates only
 // tell an edge's direction, so self-overlapping patches work like any other.
 #pragma once
 

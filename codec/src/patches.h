@@ -14,8 +14,8 @@ namespace prm::codec {
 // §7.1 The encoder's regularity check, from the quantized positions cq (3 per closed-mesh vertex) and the grid
 // size A: a triangle without dummy vertices is regular for axis a when its three vertices are lattice points of
 // pair a / 2 (§8.1) forming a unit grid triangle, counter-clockwise for a even, clockwise for a odd (the triangle
-// faces the axis). The lowest pair wins. Then, until no two regular triangles of different axes share an edge,
-// both are made irregular (a patch has one axis, §8.2). tri_axis: 0..5, or -1 for irregular and dummy triangles.
+// faces the axis). The lowest pair wins. Then, in one pass, every regular triangle with a regular
+// neighbour of another axis is made irregular (a patch has one axis, §8.2; demoting creates no new conflict). tri_axis: 0..5, or -1 for irregular and dummy triangles.
 void classify_triangles(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, int64_t grid,
                         std::vector<int8_t>& tri_axis);
 

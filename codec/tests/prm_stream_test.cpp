@@ -196,3 +196,34 @@ TEST(PrmStream, EveryTruncationAndRandomSections) {
 
 }  // namespace
 }  // namespace prm::codec::test
+
+namespace prm::codec::test {
+namespace {
+
+// A golden PRM stream (format 1.1), by fingerprint: the encoder must keep producing exactly these bytes from the
+// generating mesh, and they must keep decoding. A format change bumps the version (spec/CHANGES.md) and records a
+// new fingerprint; never update this silently.
+uint64_t fnv_bytes(const std::vector<uint8_t>& b) {
+  uint64_t h = 1469598103934665603ull;
+  for (uint8_t x : b) {
+    h ^= x;
+    h *= 1099511628211ull;
+  }
+  return h;
+}
+
+TEST(PrmStream, GoldenFingerprint) {
+  const QMesh m = pillow(4, 3, 5);
+  PrmOptions o;
+  o.grid = 8;
+  EncodeReport rep;
+  const auto enc = encode_prm(m.q.data(), m.nv(), m.tris.data(), m.nt(), unit_frame(), o, &rep);
+  ASSERT_TRUE(enc.ok());
+  EXPECT_EQ(enc.value[5], kFormatMinorPrm);
+  EXPECT_EQ(enc.value.size(), size_t{159});
+  EXPECT_EQ(fnv_bytes(enc.value), uint64_t{14658986233315911954ull}) << std::hex << fnv_bytes(enc.value);
+  expect_round_trip(m, enc.value, rep);
+}
+
+}  // namespace
+}  // namespace prm::codec::test

@@ -54,12 +54,19 @@ void add_encode_command(CLI::App& root) {
                             {"header", rep.header_bytes},
                             {"connectivity", rep.connectivity_bytes},
                             {"positions", rep.position_bytes},
+                            {"irregular_triangles", rep.irregular_bytes},
+                            {"patches", rep.patch_bytes},
                             {"framing", rep.framing_bytes}}},
                           {"bits_per_vertex",
                            {{"connectivity", 8.0 * rep.connectivity_bytes / v},
                             {"positions", 8.0 * rep.position_bytes / v},
                             {"total", 8.0 * rep.total_bytes / v}}},
                           {"encode_ms", ms}};
+      if (was_prm)
+        j["prm"] = {{"regular_triangles", rep.regular_triangles},
+                    {"regular_patches", rep.regular_patches},
+                    {"patch_vertices", rep.patch_vertices},
+                    {"height_depth", rep.height_depth}};
       std::printf("%s\n", j.dump().c_str());
     } else {
       std::printf("%s -> %s: %zu bytes (%.3f bits/vertex)\n", opt->input.c_str(), opt->output.c_str(),
@@ -67,6 +74,11 @@ void add_encode_command(CLI::App& root) {
       std::printf("  %u vertices, %u triangles, %u component(s), %u hole(s), total genus %u", rep.vertices,
                   rep.triangles, rep.components, rep.holes, rep.handles);
       if (rep.unreferenced_dropped) std::printf(", %u unreferenced vertices dropped", rep.unreferenced_dropped);
+      if (was_prm)
+        std::printf("\n  piecewise regular: %u of %u triangles regular in %u patches (height depth %d); irregular "
+                    "triangles %zu B (%.3f bpv), patches %zu B (%.3f bpv)",
+                    rep.regular_triangles, rep.triangles, rep.regular_patches, rep.height_depth, rep.irregular_bytes,
+                    8.0 * rep.irregular_bytes / v, rep.patch_bytes, 8.0 * rep.patch_bytes / v);
       std::printf("\n  connectivity %zu B (%.3f bpv), positions %zu B (%.3f bpv, %d bits), header %zu B, "
                   "framing %zu B; %.1f ms\n",
                   rep.connectivity_bytes, 8.0 * rep.connectivity_bytes / v, rep.position_bytes,
