@@ -4,12 +4,16 @@
 
 #include <algorithm>
 #include <map>
+#include <tuple>
 #include <string>
 
 #include "prm/metro_distance.h"
 #include "prm/mesh_io.h"
 #include "prm/pipeline/codec_bridge.h"
 #include "prm/pipeline/pack.h"
+#include "prm/remesh/reliefs.h"
+#include "prm/remesh/resample.h"
+#include "test_meshes.h"
 
 namespace {
 
@@ -17,11 +21,11 @@ using prm::pipeline::PackOptions;
 
 // Decodes `stream` and checks it against the PRM the pack encoded: vertex k of the stream is PRM vertex
 // report.vertex_order[k], with the PRM's quantized position, and the triangles are the PRM's under that map.
-void expect_exact_round_trip(const prm::pipeline::PackResult& r) {
-  const auto decoded = prm::codec::decode(r.stream.data(), r.stream.size());
+void expect_exact_round_trip(const prm::remesh::PrmMesh& prm, const std::vector<uint8_t>& stream,
+                              const prm::codec::EncodeReport& report) {
+  const auto decoded = prm::codec::decode(stream.data(), stream.size());
   ASSERT_TRUE(decoded.ok()) << decoded.status.message;
-  const prm::remesh::PrmMesh& prm = r.remesh.prm;
-  const auto& order = r.report.vertex_order;
+  const auto& order = report.vertex_order;
   ASSERT_EQ(decoded.value.num_vertices(), prm.mesh.positions.size());
   ASSERT_EQ(order.size(), prm.mesh.positions.size());
   for (size_t k = 0; k < order.size(); ++k)
@@ -44,6 +48,10 @@ void expect_exact_round_trip(const prm::pipeline::PackResult& r) {
     ASSERT_TRUE(it != expected.end() && it->second > 0) << "decoded triangle " << t << " is not in the PRM";
     --it->second;
   }
+}
+
+void expect_exact_round_trip(const prm::pipeline::PackResult& r) {
+  expect_exact_round_trip(r.remesh.prm, r.stream, r.report);
 }
 
 struct Case {
@@ -71,6 +79,39 @@ TEST(Pack, RealMeshesRoundTripExactly) {
     const double rms = r.repaired ? d.a_to_b.rms : d.rms;
     EXPECT_LT(d.rel(rms), 1.25 * r.remesh.error.rms + 2e-5) << "remeshed " << r.remesh.error.rms;
   }
+}
+
+TEST(Pack, SelfOverlappingPatchRoundTrips) {
+  // The helical ramp's top overlaps itself along z: patches whose lattice points repeat (spec §8.3, §9.2 work on
+  // the combinatorial patch, never on the projection).
+  const prm::Mesh ramp = prm::test::helical_ramp();
+  prm::remesh::ReliefOptions ro;
+  ro.naive = true;
+  const prm::remesh::ReliefLayout layout = prm::remesh::build_reliefs(ramp, ro);
+  std::vector<int> axes;
+  for (const prm::remesh::Relief& r : layout.reliefs) axes.push_back(r.axis);
+  prm::remesh::LayoutInput in;
+  in.refined = &layout.mesh;
+  in.face_relief = &layout.face_relief;
+  in.relief_axis = &axes;
+  in.input = &ramp;
+  prm::remesh::ResampleOptions o;
+  o.frame = prm::remesh::QuantFrame::of_mesh(ramp, 12);
+  o.grid = 40;
+  const prm::remesh::PrmMesh prm = prm::remesh::resample_and_merge(in, o);
+  prm::codec::EncodeReport rep;
+  const auto enc = prm::pipeline::encode_prm_mesh(prm, &rep);
+  ASSERT_TRUE(enc.ok()) << enc.status.message;
+  EXPECT_GT(rep.regular_triangles, prm.mesh.triangles.size() / 2);
+  // Some patch has two vertices on one lattice point.
+  bool overlap = false;
+  {
+    std::map<std::tuple<int32_t, int32_t, int32_t>, int> seen;
+    for (size_t v = 0; v < prm.mesh.positions.size(); ++v)
+      if (prm.vertex_relief[v] >= 0 && ++seen[{prm.vertex_relief[v], prm.lattice_i[v], prm.lattice_j[v]}] == 2) overlap = true;
+  }
+  EXPECT_TRUE(overlap);
+  expect_exact_round_trip(prm, enc.value, rep);
 }
 
 TEST(Pack, GridFromTargetError) {
