@@ -100,7 +100,8 @@ void add_pack_command(CLI::App& root) {
       std::printf("  remeshed: %zu -> %u vertices, grid %.6g (%lld steps), %.1f%% regular triangles in %u patches\n",
                   input.num_vertices(), rep.vertices, g, static_cast<long long>(r.remesh.prm.lattice.A),
                   s.faces ? 100.0 * static_cast<double>(s.regular_faces) / s.faces : 0.0, rep.regular_patches);
-      std::printf("  error to the input: RMS %.3e, max %.3e of the diagonal\n", r.remesh.error.rms, r.remesh.error.max);
+      std::printf("  error of the remeshed mesh to the input: RMS %.3e, max %.3e of the diagonal (the search aims 4%% below\n"
+                  "  the target, for the quantization)\n", r.remesh.error.rms, r.remesh.error.max);
       std::printf("  stream: connectivity %zu B (%.2f bpv), irregular triangles %zu B (%.2f bpv), geometry %zu B "
                   "(%.2f bpv), header %zu B\n",
                   rep.connectivity_bytes, 8.0 * rep.connectivity_bytes / n_r, rep.irregular_bytes,

@@ -12,9 +12,13 @@
 
 namespace prm::pipeline {
 
+// The grid search aims this much below PackOptions::target_error, for the quantization the stream adds.
+constexpr double kQuantizationMargin = 0.96;
+
 struct PackOptions {
   // The grid size: exactly one of these three.
-  double target_error = 0;   // largest symmetric RMS distance to the input, fraction of the bounding-box diagonal
+  double target_error = 0;   // largest symmetric RMS distance of the decoded mesh to the input, fraction of the
+                             // bounding-box diagonal
   double grid_fraction = 0;  // fraction of the diagonal
   double grid_size = 0;      // model units
   double tau = 0.2;          // relief smoothing (paper §2.1)
