@@ -41,7 +41,10 @@ struct LevelPlan {
   std::vector<uint8_t> edge_count;
 };
 
-inline void plan_level(const Level& level, int d, LevelPlan& out) {
+// `twin` (optional): per side, the other side of its edge or UINT32_MAX; level 0 knows it from the mesh's corner
+// table (§6.1), which on a valid stream groups the sides exactly as the vertex pairs do (§6.8: no two edges join
+// the same pair). Without it the pairs are grouped here.
+inline void plan_level(const Level& level, int d, LevelPlan& out, const std::vector<uint32_t>* twin = nullptr) {
   const uint32_t nv = level.size();
   const uint32_t nt = static_cast<uint32_t>(level.tris.size());
   constexpr uint32_t kNone = UINT32_MAX;
@@ -57,6 +60,12 @@ inline void plan_level(const Level& level, int d, LevelPlan& out) {
   auto& group_first = out.group_first;
   side_edge.resize(num_sides);
   group_first.assign(num_sides, kNone);
+  if (twin) {
+    for (uint32_t s = 0; s < num_sides; ++s) {
+      const uint32_t o = (*twin)[s];
+      group_first[s] = o != kNone && o < s ? o : s;
+    }
+  } else {
   bucket_start.assign(size_t{nv} + 1, 0);
   auto& side_lo = out.side_lo;
   auto& side_hi = out.side_hi;
@@ -95,6 +104,7 @@ inline void plan_level(const Level& level, int d, LevelPlan& out) {
         else if (b1 - b0 > 64 && o > other) break;  // sorted bucket: no more of this group
       }
     }
+  }
   }
   uint32_t ne = 0;
   for (uint32_t s = 0; s < num_sides; ++s) ne += group_first[s] == s;

@@ -36,6 +36,7 @@ Status read_patches(const uint8_t* data, size_t size, uint64_t offset, const Clo
   Level level;
   std::vector<std::vector<int64_t>> f;
   std::vector<LevelPlan> plans;
+  std::vector<uint32_t> tri_pos(mesh.num_triangles(), UINT32_MAX), twin;
   std::vector<uint8_t> scratch;
   std::array<int64_t, 2> previous{0, 0};
   const int64_t coord_bound = int64_t{1} << (bits + 1);
@@ -72,7 +73,8 @@ Status read_patches(const uint8_t* data, size_t size, uint64_t offset, const Clo
         return fail(Error::bad_position, "8.3", which + ": vertex " + std::to_string(v) + " placed twice, differently");
     }
     // §9 Heights.
-    build_levels(level, depth, plans);
+    patch_side_twins(mesh, ps, p, tri_pos, twin);
+    build_levels(level, depth, plans, &twin);
     if (!code_heights(level, depth, bits, models->heights, f, plans, scratch, queue, false, value))
       return fail(Error::bad_position, "9.3", which + ": a height difference out of range");
     if (rc.failed()) return fail(Error::truncated, "5.5", "the patch data ends early");

@@ -88,6 +88,7 @@ Status write_patches(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, in
   Level level;
   std::vector<std::vector<int64_t>> f;
   std::vector<LevelPlan> plans;
+  std::vector<uint32_t> tri_pos(mesh.num_triangles(), UINT32_MAX), twin;
   std::vector<uint8_t> scratch;
   std::array<int64_t, 2> previous{0, 0};
   uint32_t patch_vertices = 0;
@@ -117,7 +118,8 @@ Status write_patches(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, in
     // §9 Heights.
     f.assign(1, std::vector<int64_t>(level.size()));
     for (uint32_t l = 0; l < level.size(); ++l) f[0][l] = cq[3 * size_t{global[l]} + static_cast<size_t>(pair)];
-    build_levels(level, depth, plans);
+    patch_side_twins(mesh, ps, p, tri_pos, twin);
+    build_levels(level, depth, plans, &twin);
     if (!code_heights(level, depth, bits, models->heights, f, plans, scratch, queue, true, value))
       return make_status(Error::internal, "9.3", 0, "height out of range in patch " + std::to_string(p));
     for (uint32_t l = 0; l < level.size(); ++l) {

@@ -92,13 +92,34 @@ inline bool propagate_patch(const ClosedMesh& mesh, const PatchSet& ps, size_t p
 
 // §9.2 The levels of one patch, top-down (values are not needed to build them): plans[k] describes level k for
 // direction k mod 3 and holds level k + 1 as its child.
-inline void build_levels(const Level& level0, int depth, std::vector<LevelPlan>& plans) {
+// twin0 (optional): level 0's side twins (patch_side_twins).
+inline void build_levels(const Level& level0, int depth, std::vector<LevelPlan>& plans,
+                         const std::vector<uint32_t>* twin0 = nullptr) {
   plans.resize(static_cast<size_t>(depth));
   const Level* level = &level0;
   for (int k = 0; k < depth; ++k) {
-    plan_level(*level, k % 3, plans[static_cast<size_t>(k)]);
+    plan_level(*level, k % 3, plans[static_cast<size_t>(k)], k == 0 ? twin0 : nullptr);
     level = &plans[static_cast<size_t>(k)].child;
   }
+}
+
+// Level 0's side twins from the corner table: side 3r + k of the patch's r-th triangle t (edge from corner k to
+// corner k + 1, opposite corner k + 2) and the side of the neighbour across it, when that neighbour is in the same
+// patch. `tri_pos` (size T, all UINT32_MAX on entry and on return) is scratch.
+inline void patch_side_twins(const ClosedMesh& mesh, const PatchSet& ps, size_t p, std::vector<uint32_t>& tri_pos,
+                             std::vector<uint32_t>& twin) {
+  const uint32_t first = ps.start[p], count = ps.start[p + 1] - first;
+  for (uint32_t r = 0; r < count; ++r) tri_pos[ps.order[first + r]] = r;
+  twin.resize(size_t{3} * count);
+  for (uint32_t r = 0; r < count; ++r) {
+    const uint32_t t = ps.order[first + r];
+    for (uint32_t k = 0; k < 3; ++k) {
+      const uint32_t oc = static_cast<uint32_t>(mesh.opp[3 * t + (k + 2) % 3]);
+      const uint32_t rn = tri_pos[oc / 3];
+      twin[3 * r + k] = rn == UINT32_MAX ? UINT32_MAX : 3 * rn + (oc % 3 + 1) % 3;
+    }
+  }
+  for (uint32_t r = 0; r < count; ++r) tri_pos[ps.order[first + r]] = UINT32_MAX;
 }
 
 // §9.3 Heights of one patch, over levels build_levels() made. f[0] holds the heights (encoder: input; decoder:
