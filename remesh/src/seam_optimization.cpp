@@ -573,16 +573,9 @@ class SeamOptimizer {
     return retriangulate_region(S);
   }
 
-  // The faces that exist now, for loops that add and delete faces as they go. (OpenMesh's skipping iterators
-  // must not be used there: when the face at the range's end index is deleted, the iterator steps over the end
-  // and runs off the face array.)
-  std::vector<FH> faces_snapshot() const {
-    std::vector<FH> faces;
-    faces.reserve(mesh_.n_faces());
-    for (int i = 0, n = static_cast<int>(mesh_.n_faces()); i < n; ++i) faces.emplace_back(i);
-    return faces;
-  }
-
+  // The loops below add and delete faces as they go, so they walk the face indices that exist when a round starts.
+  // (Not OpenMesh's skipping iterators: when the face at the range's end index is deleted, they step over the end
+  // and run off the face array.)
   size_t remove_bad_triangles() {
     size_t repairs = 0;
     // Rounds of local fixes; when a round fixes nothing, the next may also move grid vertices (which then stop
@@ -590,7 +583,8 @@ class SeamOptimizer {
     bool allow_lattice = false;
     for (int round = 0; round < 32; ++round) {
       size_t fixed = 0, bad = 0;
-      for (FH f : faces_snapshot()) {
+      for (int i = 0, n = static_cast<int>(mesh_.n_faces()); i < n; ++i) {
+        const FH f(i);
         if (mesh_.status(f).deleted() || face_ok(f)) continue;
         ++bad;
         if (repair_face(f) || relocate_vertex(f, allow_lattice) || (allow_lattice && (collapse_face(f) || split_edge_on_surface(f) || split_face_on_surface(f)))) ++fixed;
@@ -605,7 +599,8 @@ class SeamOptimizer {
     // What the local moves could not fix: the region around each bad face is removed and triangulated afresh.
     for (int round = 0; round < 8; ++round) {
       size_t fixed = 0, bad = 0;
-      for (FH f : faces_snapshot()) {
+      for (int i = 0, n = static_cast<int>(mesh_.n_faces()); i < n; ++i) {
+        const FH f(i);
         if (mesh_.status(f).deleted() || face_ok(f)) continue;
         ++bad;
         if (retriangulate_around(f)) ++fixed;
