@@ -94,8 +94,10 @@ Status encode_impl(const uint32_t* q, size_t nv, const uint32_t* tris, size_t nt
   if (prm) {
     if (prm->grid < 2 || prm->grid > (int64_t{1} << frame.bits))
       return make_status(Error::invalid_argument, "8.4", 0, "grid size must be 2..2^bits quantization steps");
-    if (prm->height_depth < -1 || prm->height_depth > kMaxHeightDepth)
-      return make_status(Error::invalid_argument, "9.4", 0, "height depth must be 0..6 (or -1: best)");
+    if (prm->height_depth < -1 || prm->height_depth > kHeightDepthPredicted)
+      return make_status(Error::invalid_argument, "9.4", 0, "height depth must be 0..7 (or -1: best)");
+    if (prm->overlap_depth < -1 || prm->overlap_depth > kMaxHeightDepth)
+      return make_status(Error::invalid_argument, "9.7.2", 0, "overlap depth must be 0..6 (or -1: 3)");
   }
   const uint32_t qmax = (uint32_t{1} << frame.bits) - 1;
   for (size_t i = 0; i < 3 * nv; ++i)
@@ -132,7 +134,7 @@ Status encode_impl(const uint32_t* q, size_t nv, const uint32_t* tris, size_t nt
   std::vector<uint8_t> known;
   PatchStats patch_stats;
   uint32_t regular = 0;
-  int depth_used = -1;
+  int depth_used = -1, overlap_used = -1;
   if (prm) {
     classify_triangles(mesh, cq, prm->grid, tri_axis);
     for (int8_t a : tri_axis) regular += a >= 0;
@@ -141,22 +143,33 @@ Status encode_impl(const uint32_t* q, size_t nv, const uint32_t* tris, size_t nt
     std::vector<uint8_t> irregular(mesh.num_triangles(), 0);
     const std::vector<uint8_t> dummy = dummy_triangles(mesh);
     for (uint32_t t = 0; t < mesh.num_triangles(); ++t) irregular[t] = dummy[t] != kDummyTriangle && tri_axis[t] < 0;
-    write_irregular_triangles(mesh, irregular, irregular_payload);
-    // §9.4 The height depth: the caller's, or the one giving the smallest section.
-    const int first = prm->height_depth >= 0 ? prm->height_depth : 0;
-    const int last = prm->height_depth >= 0 ? prm->height_depth : kMaxHeightDepth;
-    for (int d = first; d <= last; ++d) {
+    h.flags |= kFlagLersValence;  // §7.3 the valence context
+    write_irregular_triangles(mesh, irregular, true, irregular_payload);
+    // §9.4 The height coding: the caller's, or the one giving the smallest section: every difference depth, then
+    // linear prediction (§9.7) with the best of them for the self-overlapping patches.
+    auto attempt = [&](int d, int overlap) -> Status {
       std::vector<uint8_t> payload, k;
       PatchStats st;
-      PRM_TRY(write_patches(mesh, cq, frame.bits, prm->grid, tri_axis, d, payload, k, &st));
+      PRM_TRY(write_patches(mesh, cq, frame.bits, prm->grid, h.bbox_min, h.bbox_max, tri_axis, d, overlap,
+                            prm->predict_every_patch, payload, k, &st));
       if (depth_used < 0 || payload.size() < patch_payload.size()) {
         patch_payload = std::move(payload);
         known = std::move(k);
         patch_stats = st;
         depth_used = d;
+        overlap_used = d == kHeightDepthPredicted ? overlap : -1;
       }
+      return ok_status();
+    };
+    if (prm->height_depth == kHeightDepthPredicted) {
+      PRM_TRY(attempt(kHeightDepthPredicted, prm->overlap_depth >= 0 ? prm->overlap_depth : 3));
+    } else if (prm->height_depth >= 0) {
+      PRM_TRY(attempt(prm->height_depth, 0));
+    } else {
+      for (int d = 0; d <= kMaxHeightDepth; ++d) PRM_TRY(attempt(d, 0));
+      PRM_TRY(attempt(kHeightDepthPredicted, prm->overlap_depth >= 0 ? prm->overlap_depth : depth_used));
     }
-    h.version_minor = kFormatMinorPrm;
+    h.version_minor = kFormatMinorPredicted;  // §3.2 1.2: the valence context, whatever the height coding
     PRM_TRY(write_positions(mesh, cq, h.bbox_min, h.bbox_max, pos, &known));
   } else {
     PRM_TRY(write_positions(mesh, cq, h.bbox_min, h.bbox_max, pos));
@@ -185,6 +198,8 @@ Status encode_impl(const uint32_t* q, size_t nv, const uint32_t* tris, size_t nt
     r.regular_patches = patch_stats.patches;
     r.patch_vertices = patch_stats.patch_vertices;
     r.height_depth = depth_used;
+    r.overlap_depth = overlap_used;
+    r.predicted_patches = patch_stats.predicted_patches;
     r.vertices = real;
     r.triangles = static_cast<uint32_t>(nt);
     r.components = static_cast<uint32_t>(plan.component_sizes.size());
@@ -300,7 +315,8 @@ Result<DecodedMesh> decode(const uint8_t* data, size_t size, const DecodeOptions
     const Section* pts = c.find(kSectionPatches);
     if (is && pts) {  // §2 a PRM: irregular triangles, patches, then the other vertices
       std::vector<uint8_t> cls, known;
-      res.status = read_irregular_triangles(data + is->offset, is->size, is->offset, mesh, cls);
+      res.status = read_irregular_triangles(data + is->offset, is->size, is->offset, mesh,
+                                            (h.flags & kFlagLersValence) != 0, cls);
       if (!res.ok()) return res;
       res.status = read_patches(data + pts->offset, pts->size, pts->offset, mesh, h.frame.bits, h.bbox_min,
                                 h.bbox_max, cls, q, known);

@@ -25,6 +25,11 @@ enum SectionId : uint8_t {
 };
 const char* section_name(uint8_t id);
 
+// §3.3 Flags: bit 0 = the valence context of the irregular triangles (§7.3, format 1.2); the other bits are
+// reserved (unsupported_feature).
+constexpr uint8_t kFlagLersValence = 0x01;
+constexpr uint8_t kKnownFlags = kFlagLersValence;
+
 // §3.3 The header fields.
 struct Header {
   uint8_t version_major = kFormatMajor;

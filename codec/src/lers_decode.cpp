@@ -9,7 +9,7 @@
 namespace prm::codec {
 
 Status read_irregular_triangles(const uint8_t* data, size_t size, uint64_t offset, const ClosedMesh& mesh,
-                                std::vector<uint8_t>& cls) {
+                                bool valence_context, std::vector<uint8_t>& cls) {
   const uint32_t nt = mesh.num_triangles();
   cls = dummy_triangles(mesh);
   if (size < 4) return make_status(Error::truncated, "5.6", offset + size, "irregular-triangle data shorter than 4 bytes");
@@ -21,6 +21,7 @@ Status read_irregular_triangles(const uint8_t* data, size_t size, uint64_t offse
   if (!decode_signed(rc, models->count, 30, count) || count < 0 || count > int64_t{nt})
     return make_status(Error::bad_section, "7.2", offset + rc.consumed(), "traversal count out of range");
   std::vector<uint8_t> discovered(nt, 0);
+  const std::vector<uint8_t> valence = valence_context ? vertex_valences(mesh) : std::vector<uint8_t>{};
   std::vector<uint32_t> stack;
   const std::vector<uint8_t> none;
   int history[2] = {0, 0};
@@ -37,7 +38,7 @@ Status read_irregular_triangles(const uint8_t* data, size_t size, uint64_t offse
                          "traversal " + std::to_string(k) + " starts at a discovered or dummy triangle " +
                              std::to_string(s));
     discovered[s] = 1;
-    lers_traversal(mesh, cls, none, discovered, stack, *models, s, history,
+    lers_traversal(mesh, cls, none, discovered, stack, *models, s, history, valence,
                    [&](BitModel& m, bool) { return rc.decode_bit(m) != 0; });
     if (rc.failed()) return make_status(Error::truncated, "5.5", offset + size, "the irregular-triangle data ends early");
   }

@@ -8,12 +8,13 @@
 
 namespace prm::codec {
 
-void write_irregular_triangles(const ClosedMesh& mesh, const std::vector<uint8_t>& irregular,
+void write_irregular_triangles(const ClosedMesh& mesh, const std::vector<uint8_t>& irregular, bool valence_context,
                                std::vector<uint8_t>& payload) {
   const uint32_t nt = mesh.num_triangles();
   const std::vector<uint8_t> cls = dummy_triangles(mesh);
   // The traversal starts, found by running the walks without coding.
   std::vector<uint8_t> discovered(nt, 0);
+  const std::vector<uint8_t> valence = valence_context ? vertex_valences(mesh) : std::vector<uint8_t>{};
   std::vector<uint32_t> stack, starts;
   auto models = std::make_unique<LersModels>();
   int history[2] = {0, 0};
@@ -21,7 +22,7 @@ void write_irregular_triangles(const ClosedMesh& mesh, const std::vector<uint8_t
     if (!irregular[t] || discovered[t] || cls[t] == kDummyTriangle) continue;
     starts.push_back(t);
     discovered[t] = 1;
-    lers_traversal(mesh, cls, irregular, discovered, stack, *models, t, history,
+    lers_traversal(mesh, cls, irregular, discovered, stack, *models, t, history, valence,
                    [](BitModel&, bool truth) { return truth; });
   }
   // §7.2 Then for real: the count, and per traversal the gap to the previous start and its decisions.
@@ -35,7 +36,7 @@ void write_irregular_triangles(const ClosedMesh& mesh, const std::vector<uint8_t
     encode_signed(rc, models->gap, static_cast<int64_t>(s) - next);
     next = int64_t{s} + 1;
     discovered[s] = 1;
-    lers_traversal(mesh, cls, irregular, discovered, stack, *models, s, history, [&](BitModel& m, bool truth) {
+    lers_traversal(mesh, cls, irregular, discovered, stack, *models, s, history, valence, [&](BitModel& m, bool truth) {
       rc.encode_bit(m, truth ? 1 : 0);
       return truth;
     });

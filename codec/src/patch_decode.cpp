@@ -26,18 +26,29 @@ Status read_patches(const uint8_t* data, size_t size, uint64_t offset, const Clo
   const int64_t grid = rc.decode_direct(kGridBits);
   const int depth = static_cast<int>(rc.decode_direct(3));
   if (grid < 2 || grid > (int64_t{1} << bits)) return fail(Error::bad_section, "8.4", "Grid_Size out of range");
-  if (depth > kMaxHeightDepth) return fail(Error::bad_section, "9.4", "Height_Depth above 6");
+  const bool predicted = depth == kHeightDepthPredicted;
+  // §9.7.2 Overlap_Depth and the predictor table.
+  const int overlap_depth = predicted ? static_cast<int>(rc.decode_direct(3)) : depth;
+  if (overlap_depth > kMaxHeightDepth) return fail(Error::bad_section, "9.7.2", "Overlap_Depth above 6");
   const LatticeConstants lc = LatticeConstants::of(grid);
   const PatchSet ps = build_patches(mesh, cls);
   auto models = std::make_unique<PatchModels>();
   auto bit = [&](BitModel& m, bool) { return rc.decode_bit(m) != 0; };
   auto value = [&](SignedIntModel& m, int max_class, int64_t, int64_t& out) { return decode_signed(rc, m, max_class, out); };
+  auto direct = [&](int n, uint32_t) { return rc.decode_direct(n); };
+  LpTable table;
+  std::array<bool, kLpSets> fitted{};
+  if (predicted && !code_lp_table(table, fitted, models->lp, direct, value))
+    return fail(Error::bad_section, "9.7.2", "a weight out of range");
+  if (rc.failed()) return fail(Error::truncated, "5.5", "the patch data ends early");
   std::vector<uint32_t> local(mesh.num_vertices, UINT32_MAX), global, queue;
   Level level;
   std::vector<std::vector<int64_t>> f;
   std::vector<LevelPlan> plans;
   std::vector<uint32_t> tri_pos(mesh.num_triangles(), UINT32_MAX), twin;
-  std::vector<uint8_t> scratch;
+  std::vector<uint8_t> scratch, placed;
+  std::vector<int64_t> h, res;
+  LpRaster raster;
   std::array<int64_t, 2> previous{0, 0};
   const int64_t coord_bound = int64_t{1} << (bits + 1);
   for (size_t p = 0; p < ps.size(); ++p) {
@@ -72,27 +83,43 @@ Status read_patches(const uint8_t* data, size_t size, uint64_t offset, const Clo
       if (known[v] && (q[3 * size_t{v} + cu] != u || q[3 * size_t{v} + cw] != w))
         return fail(Error::bad_position, "8.3", which + ": vertex " + std::to_string(v) + " placed twice, differently");
     }
-    // §9 Heights.
-    patch_side_twins(mesh, ps, p, tri_pos, twin);
-    build_levels(level, depth, plans, &twin);
-    if (!code_heights(level, depth, bits, models->heights, f, plans, scratch, queue, false, value))
-      return fail(Error::bad_position, "9.3", which + ": a height difference out of range");
+    // §9.7.4 Method: per patch in a linear-prediction stream.
+    const bool lp = predicted && rc.decode_bit(models->lp.method) != 0;
+    if (lp) {
+      raster.build(level);
+      // §9.7.4 Heights by linear prediction; the vertices earlier patches placed are known.
+      placed.resize(level.size());
+      h.resize(level.size());
+      for (uint32_t l = 0; l < level.size(); ++l) {
+        placed[l] = known[global[l]];
+        h[l] = placed[l] ? int64_t{q[3 * size_t{global[l]} + ch]} : 0;
+      }
+      if (!code_lp_heights(level, raster, table, models->lp, bits, lo[ch], hi[ch], placed, h, res, scratch, value))
+        return fail(Error::bad_position, "9.7.4", which + ": a height outside the bounding box");
+    } else {
+      // §9.1-§9.3 Heights by difference patches.
+      patch_side_twins(mesh, ps, p, tri_pos, twin);
+      build_levels(level, overlap_depth, plans, &twin);
+      if (!code_heights(level, overlap_depth, bits, models->heights, f, plans, scratch, queue, false, value))
+        return fail(Error::bad_position, "9.3", which + ": a height difference out of range");
+      h.swap(f[0]);
+    }
     if (rc.failed()) return fail(Error::truncated, "5.5", "the patch data ends early");
     for (uint32_t l = 0; l < level.size(); ++l) {
       const uint32_t v = global[l];
-      const int64_t h = f[0][l];
-      if (h < lo[ch] || h > hi[ch])
+      const int64_t height = h[l];
+      if (height < lo[ch] || height > hi[ch])
         return fail(Error::bad_position, "9.3", which + ": vertex " + std::to_string(v) + " height outside the bounding box");
       const int64_t u = lc.a * level.coord[l][0] + lc.b * level.coord[l][1], w = lc.c * level.coord[l][1];
       if (known[v]) {
-        if (q[3 * size_t{v} + ch] != h)
+        if (q[3 * size_t{v} + ch] != height)
           return fail(Error::bad_position, "9.3", which + ": vertex " + std::to_string(v) + " placed twice, differently");
         continue;
       }
       known[v] = 1;
       q[3 * size_t{v} + cu] = static_cast<uint32_t>(u);
       q[3 * size_t{v} + cw] = static_cast<uint32_t>(w);
-      q[3 * size_t{v} + ch] = static_cast<uint32_t>(h);
+      q[3 * size_t{v} + ch] = static_cast<uint32_t>(height);
     }
   }
   if (!rc.finish())

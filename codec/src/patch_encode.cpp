@@ -3,6 +3,7 @@
 #include <memory>
 #include <string>
 
+#include "height_prediction_fit.h"
 #include "patch_shared.h"
 #include "patches.h"
 #include "range_encoder.h"
@@ -37,6 +38,12 @@ int regular_axis(const std::vector<uint32_t>& cq, const LatticeConstants& lc, co
   return -1;
 }
 
+// §9.7.4 The reference encoder's choice per patch: linear prediction unless more than 1/64 of the vertices share a
+// lattice point with another (a self-overlapping patch, whose sheets the raster order would mix).
+bool use_prediction(uint32_t shared, uint32_t vertices, bool always) {
+  return always || uint64_t{shared} * 64 <= vertices;
+}
+
 }  // namespace
 
 void classify_triangles(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, int64_t grid,
@@ -61,19 +68,22 @@ void classify_triangles(const ClosedMesh& mesh, const std::vector<uint32_t>& cq,
 }
 
 Status write_patches(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, int bits, int64_t grid,
-                     const std::vector<int8_t>& tri_axis, int depth, std::vector<uint8_t>& payload,
-                     std::vector<uint8_t>& known, PatchStats* stats) {
+                     const std::array<uint32_t, 3>& box_lo, const std::array<uint32_t, 3>& box_hi,
+                     const std::vector<int8_t>& tri_axis, int depth, int overlap_depth, bool predict_every_patch,
+                     std::vector<uint8_t>& payload, std::vector<uint8_t>& known, PatchStats* stats) {
   const uint32_t nt = mesh.num_triangles();
   std::vector<uint8_t> cls = dummy_triangles(mesh);
   for (uint32_t t = 0; t < nt; ++t)
     if (cls[t] != kDummyTriangle) cls[t] = tri_axis[t] >= 0 ? kRegular : kIrregular;
   const PatchSet ps = build_patches(mesh, cls);
   const LatticeConstants lc = LatticeConstants::of(grid);
+  const bool predicted = depth == kHeightDepthPredicted;
   RangeEncoder rc;
   auto models = std::make_unique<PatchModels>();
-  // §8.4 Grid_Size and Height_Depth.
+  // §8.4 Grid_Size and Height_Depth; §9.7.2 Overlap_Depth.
   rc.encode_direct(static_cast<uint32_t>(grid), kGridBits);
   rc.encode_direct(static_cast<uint32_t>(depth), 3);
+  if (predicted) rc.encode_direct(static_cast<uint32_t>(overlap_depth), 3);
   auto bit = [&](BitModel& m, bool truth) {
     rc.encode_bit(m, truth ? 1 : 0);
     return truth;
@@ -83,55 +93,107 @@ Status write_patches(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, in
     out = truth;
     return true;
   };
-  known.assign(mesh.num_vertices, 0);
+  auto direct = [&](int n, uint32_t truth) {
+    rc.encode_direct(truth, n);
+    return truth;
+  };
   std::vector<uint32_t> local(mesh.num_vertices, UINT32_MAX), global, queue;
   Level level;
   std::vector<std::vector<int64_t>> f;
   std::vector<LevelPlan> plans;
   std::vector<uint32_t> tri_pos(mesh.num_triangles(), UINT32_MAX), twin;
-  std::vector<uint8_t> scratch;
-  std::array<int64_t, 2> previous{0, 0};
-  uint32_t patch_vertices = 0;
-  for (size_t p = 0; p < ps.size(); ++p) {
+  std::vector<uint8_t> scratch, placed;
+  std::vector<int64_t> h, res;
+  LpRaster raster;
+  // §8.3 One patch's axis, header fields and level 0 (lattice coordinates), checked against the positions.
+  int axis = 0, align = 0;
+  std::array<int64_t, 2> c0;
+  auto prepare = [&](size_t p) -> Status {
     const uint32_t t0 = ps.order[ps.start[p]];
-    const int axis = tri_axis[t0];
+    axis = tri_axis[t0];
     const int pair = axis / 2;
-    std::array<int64_t, 2> c0, c1;
+    std::array<int64_t, 2> c1;
     if (!lattice_of(cq, lc, pair, mesh.corner_vertex[3 * t0], c0) ||
         !lattice_of(cq, lc, pair, mesh.corner_vertex[3 * t0 + 1], c1))
       return make_status(Error::internal, "8.3", 0, "a regular triangle's corner is not a lattice point");
-    const int align = direction_index(c1[0] - c0[0], c1[1] - c0[1]);
+    align = direction_index(c1[0] - c0[0], c1[1] - c0[1]);
+    // The decoder's propagation must find every vertex where it is.
+    if (!propagate_patch(mesh, ps, p, c0, align, axis % 2 == 0, level, global, local))
+      return make_status(Error::internal, "8.3", 0, "lattice conflict in patch " + std::to_string(p));
+    for (uint32_t l = 0; l < level.size(); ++l) {
+      local[global[l]] = UINT32_MAX;
+      std::array<int64_t, 2> actual;
+      if (!lattice_of(cq, lc, pair, global[l], actual) || actual != level.coord[l])
+        return make_status(Error::internal, "8.3", 0, "patch " + std::to_string(p) + " propagates off its lattice");
+    }
+    h.resize(level.size());
+    for (uint32_t l = 0; l < level.size(); ++l) h[l] = cq[3 * size_t{global[l]} + static_cast<size_t>(pair)];
+    return ok_status();
+  };
+  known.assign(mesh.num_vertices, 0);
+  // §9.7.2 The predictor table, fitted to the heights the patches will code (same placement order as below).
+  LpTable table;
+  std::array<bool, kLpSets> fitted{};
+  if (predicted) {
+    std::vector<LpSample> samples;
+    std::array<uint32_t, kLpOffsets> id;
+    for (size_t p = 0; p < ps.size(); ++p) {
+      PRM_TRY(prepare(p));
+      if (use_prediction(raster.build(level), level.size(), predict_every_patch))
+        for (uint32_t l : raster.order()) {
+          LpSample smp;
+          smp.mask = raster.taps(level.coord[l][0], level.coord[l][1], id);
+          if (known[global[l]]) continue;
+          for (int t = 0; t < kLpOffsets; ++t) smp.tap[static_cast<size_t>(t)] = id[t] != LpRaster::kNone ? h[id[t]] : 0;
+          smp.h = h[l];
+          samples.push_back(smp);
+        }
+      for (uint32_t v : global) known[v] = 1;
+    }
+    fit_lp_table(samples, table, fitted);
+    code_lp_table(table, fitted, models->lp, direct, value);
+    known.assign(mesh.num_vertices, 0);
+  }
+  std::array<int64_t, 2> previous{0, 0};
+  uint32_t patch_vertices = 0, predicted_patches = 0;
+  for (size_t p = 0; p < ps.size(); ++p) {
+    PRM_TRY(prepare(p));
+    const int pair = axis / 2;
     // §8.4 The patch header.
     code_symbol8(models->axis, axis, bit);
     encode_signed(rc, models->base_i, c0[0] - previous[0]);
     encode_signed(rc, models->base_j, c0[1] - previous[1]);
     code_symbol8(models->align, align, bit);
     previous = c0;
-    // §8.3 The decoder's propagation must find every vertex where it is.
-    if (!propagate_patch(mesh, ps, p, c0, align, axis % 2 == 0, level, global, local))
-      return make_status(Error::internal, "8.3", 0, "lattice conflict in patch " + std::to_string(p));
-    for (uint32_t l = 0; l < level.size(); ++l) {
-      std::array<int64_t, 2> actual;
-      if (!lattice_of(cq, lc, pair, global[l], actual) || actual != level.coord[l])
-        return make_status(Error::internal, "8.3", 0, "patch " + std::to_string(p) + " propagates off its lattice");
+    const bool lp = predicted && use_prediction(raster.build(level), level.size(), predict_every_patch);
+    if (predicted) bit(models->lp.method, lp);  // §9.7.4 Method
+    if (lp) {
+      // §9.7.4 Heights by linear prediction.
+      placed.resize(level.size());
+      for (uint32_t l = 0; l < level.size(); ++l) placed[l] = known[global[l]];
+      const int64_t lo = box_lo[static_cast<size_t>(pair)], hi = box_hi[static_cast<size_t>(pair)];
+      if (!code_lp_heights(level, raster, table, models->lp, bits, lo, hi, placed, h, res, scratch, value))
+        return make_status(Error::internal, "9.7", 0, "height out of range in patch " + std::to_string(p));
+      ++predicted_patches;
+    } else {
+      // §9 Heights by difference patches.
+      const int d = predicted ? overlap_depth : depth;
+      f.assign(1, h);
+      patch_side_twins(mesh, ps, p, tri_pos, twin);
+      build_levels(level, d, plans, &twin);
+      if (!code_heights(level, d, bits, models->heights, f, plans, scratch, queue, true, value))
+        return make_status(Error::internal, "9.3", 0, "height out of range in patch " + std::to_string(p));
     }
-    // §9 Heights.
-    f.assign(1, std::vector<int64_t>(level.size()));
-    for (uint32_t l = 0; l < level.size(); ++l) f[0][l] = cq[3 * size_t{global[l]} + static_cast<size_t>(pair)];
-    patch_side_twins(mesh, ps, p, tri_pos, twin);
-    build_levels(level, depth, plans, &twin);
-    if (!code_heights(level, depth, bits, models->heights, f, plans, scratch, queue, true, value))
-      return make_status(Error::internal, "9.3", 0, "height out of range in patch " + std::to_string(p));
     for (uint32_t l = 0; l < level.size(); ++l) {
       patch_vertices += !known[global[l]];
       known[global[l]] = 1;
-      local[global[l]] = UINT32_MAX;
     }
   }
   payload = rc.finish();
   if (stats) {
     stats->patches = static_cast<uint32_t>(ps.size());
     stats->patch_vertices = patch_vertices;
+    stats->predicted_patches = predicted_patches;
   }
   return ok_status();
 }

@@ -9,13 +9,15 @@
 
 #include "clers.h"
 #include "difference_patch.h"
+#include "height_prediction.h"
 #include "prm_lattice.h"
 #include "regular_patches.h"
 #include "signed_int_model.h"
 
 namespace prm::codec {
 
-constexpr int kMaxHeightDepth = 6;  // §9.4 Height_Depth 0..6
+constexpr int kMaxHeightDepth = 6;  // §9.4 Height_Depth 0..6: difference patches
+constexpr int kHeightDepthPredicted = 7;  // §9.7 Height_Depth 7: linear prediction (format 1.2)
 constexpr int kGridBits = 21;       // §8.4 Grid_Size: 21 direct bits
 
 struct HeightModels {
@@ -29,6 +31,7 @@ struct PatchModels {
   BitModel align[8];
   SignedIntModel base_i, base_j;
   HeightModels heights;
+  LpModels lp;
 };
 
 // §8.4 A symbol 0..7 as three modelled bits, most significant first, with a binary tree of models.

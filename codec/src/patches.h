@@ -22,13 +22,17 @@ void classify_triangles(const ClosedMesh& mesh, const std::vector<uint32_t>& cq,
 struct PatchStats {
   uint32_t patches = 0;
   uint32_t patch_vertices = 0;
+  uint32_t predicted_patches = 0;  // §9.7: patches coded by linear prediction
 };
 
-// §8-§9 Encoder: the patches section for the regular triangles (tri_axis >= 0) at height depth `depth`
-// (0..kMaxHeightDepth). Sets known[v] = 1 for every vertex of a patch (their positions are in this section).
+// §8-§9 Encoder: the patches section for the regular triangles (tri_axis >= 0). `depth` 0..kMaxHeightDepth: the
+// heights by difference patches of that depth (§9.1-§9.3); kHeightDepthPredicted: by linear prediction (§9.7), the
+// self-overlapping patches by difference patches of `overlap_depth`. box_lo / box_hi: the header's quantized
+// bounding box (§3.3). Sets known[v] = 1 for every vertex of a patch (their positions are in this section).
 Status write_patches(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, int bits, int64_t grid,
-                     const std::vector<int8_t>& tri_axis, int depth, std::vector<uint8_t>& payload,
-                     std::vector<uint8_t>& known, PatchStats* stats);
+                     const std::array<uint32_t, 3>& box_lo, const std::array<uint32_t, 3>& box_hi,
+                     const std::vector<int8_t>& tri_axis, int depth, int overlap_depth, bool predict_every_patch,
+                     std::vector<uint8_t>& payload, std::vector<uint8_t>& known, PatchStats* stats);
 
 // §8-§9 Decoder: positions of the patch vertices into q (3 per closed-mesh vertex), known[v] = 1 for them.
 // cls: per triangle kRegular / kIrregular / kDummyTriangle (§7).

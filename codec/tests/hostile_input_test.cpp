@@ -218,7 +218,9 @@ TEST(Hostile, HeaderFields) {
   };
   EXPECT_EQ(patched(0, 'X'), Error::bad_magic);
   EXPECT_EQ(patched(4, 2), Error::unsupported_version);
-  EXPECT_EQ(patched(6, 1), Error::unsupported_feature);  // Flags
+  for (uint8_t flags : {2, 4, 0x80, 0xFF})  // Flags: only bit 0 (§3.3, the valence context) is defined
+    EXPECT_EQ(patched(6, flags), Error::unsupported_feature) << int{flags};
+  EXPECT_EQ(patched(6, 1), Error::ok);  // a general-path stream with bit 0: nothing to apply it to
   EXPECT_EQ(patched(7, 7), Error::bad_header);           // Position_Bits
   EXPECT_EQ(patched(7, 21), Error::bad_header);
   std::vector<uint8_t> t = s;

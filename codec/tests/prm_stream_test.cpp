@@ -60,7 +60,7 @@ void expect_round_trip(const QMesh& m, const std::vector<uint8_t>& stream, const
 TEST(PrmStream, PillowRoundTripsAtEveryHeightDepth) {
   const QMesh m = pillow(12, 0);
   size_t best = SIZE_MAX;
-  for (int depth = 0; depth <= 6; ++depth) {
+  for (int depth = 0; depth <= 7; ++depth) {  // 7: linear prediction (§9.7)
     PrmOptions o;
     o.grid = 8;
     o.height_depth = depth;
@@ -72,6 +72,8 @@ TEST(PrmStream, PillowRoundTripsAtEveryHeightDepth) {
     EXPECT_EQ(rep.regular_triangles, m.nt() - 2 * 6 * 12);  // all but the band
     EXPECT_EQ(rep.patch_vertices, m.nv());  // every vertex is on a patch
     EXPECT_GT(rep.irregular_bytes, 0u);
+    EXPECT_EQ(rep.predicted_patches, depth == 7 ? 2u : 0u);
+    EXPECT_EQ(enc.value[5], kFormatMinorPredicted);  // §3.2: the valence context makes every PRM stream 1.2
     expect_round_trip(m, enc.value, rep);
     best = std::min(best, enc.value.size());
   }
@@ -123,10 +125,40 @@ TEST(PrmStream, BadOptionsAreRefused) {
     EXPECT_EQ(encode_prm(m.q.data(), m.nv(), m.tris.data(), m.nt(), unit_frame(), o).status.error,
               Error::invalid_argument);
   }
+  for (int depth : {-2, 8}) {
+    PrmOptions o;
+    o.grid = 8;
+    o.height_depth = depth;
+    EXPECT_EQ(encode_prm(m.q.data(), m.nv(), m.tris.data(), m.nt(), unit_frame(), o).status.error,
+              Error::invalid_argument);
+  }
   PrmOptions o;
   o.grid = 8;
   o.height_depth = 7;
+  o.overlap_depth = 7;
   EXPECT_EQ(encode_prm(m.q.data(), m.nv(), m.tris.data(), m.nt(), unit_frame(), o).status.error, Error::invalid_argument);
+}
+
+// §9.7 On a larger bumpy pillow linear prediction beats every difference depth, and the default picks it.
+TEST(PrmStream, LinearPredictionWinsOnASmoothPatch) {
+  const QMesh m = pillow(40, 0);
+  size_t best_difference = SIZE_MAX;
+  for (int depth = 0; depth <= 6; ++depth) {
+    PrmOptions o;
+    o.grid = 8;
+    o.height_depth = depth;
+    const auto enc = encode_prm(m.q.data(), m.nv(), m.tris.data(), m.nt(), unit_frame(), o);
+    ASSERT_TRUE(enc.ok());
+    best_difference = std::min(best_difference, enc.value.size());
+  }
+  PrmOptions o;
+  o.grid = 8;
+  EncodeReport rep;
+  const auto enc = encode_prm(m.q.data(), m.nv(), m.tris.data(), m.nt(), unit_frame(), o, &rep);
+  ASSERT_TRUE(enc.ok());
+  EXPECT_EQ(rep.height_depth, 7);
+  EXPECT_LT(enc.value.size(), best_difference);
+  expect_round_trip(m, enc.value, rep);
 }
 
 void fix_crc(std::vector<uint8_t>& s) {
@@ -147,10 +179,11 @@ void decode_any(const std::vector<uint8_t>& s) {
   }
 }
 
-std::vector<uint8_t> small_prm_stream() {
+std::vector<uint8_t> small_prm_stream(int depth = -1) {
   const QMesh m = pillow(4, 3, 5);
   PrmOptions o;
   o.grid = 8;
+  o.height_depth = depth;
   EncodeReport rep;
   auto enc = encode_prm(m.q.data(), m.nv(), m.tris.data(), m.nt(), unit_frame(), o, &rep);
   EXPECT_TRUE(enc.ok());
@@ -158,8 +191,10 @@ std::vector<uint8_t> small_prm_stream() {
   return enc.value;
 }
 
-TEST(PrmStream, EveryByteFlippedWithTheCrcFixed) {
-  const std::vector<uint8_t> s = small_prm_stream();
+class PrmStreamHostile : public ::testing::TestWithParam<int> {};
+
+TEST_P(PrmStreamHostile, EveryByteFlippedWithTheCrcFixed) {
+  const std::vector<uint8_t> s = small_prm_stream(GetParam());
   size_t accepted = 0;
   for (size_t i = 6; i + 4 < s.size(); ++i)
     for (uint8_t x : {0x01, 0x10, 0x80, 0xFF}) {
@@ -173,8 +208,8 @@ TEST(PrmStream, EveryByteFlippedWithTheCrcFixed) {
   EXPECT_LT(accepted, 2 * s.size());  // most flips are caught by the sections' own checks
 }
 
-TEST(PrmStream, EveryTruncationAndRandomSections) {
-  const std::vector<uint8_t> s = small_prm_stream();
+TEST_P(PrmStreamHostile, EveryTruncationAndRandomSections) {
+  const std::vector<uint8_t> s = small_prm_stream(GetParam());
   for (size_t len = 0; len < s.size(); ++len) {
     std::vector<uint8_t> t(s.begin(), s.begin() + static_cast<long>(len));
     EXPECT_FALSE(decode(t.data(), t.size()).ok()) << len;
@@ -194,15 +229,19 @@ TEST(PrmStream, EveryTruncationAndRandomSections) {
   }
 }
 
+// The reference encoder's choice, difference patches of depth 3 (§9.1-§9.3) and linear prediction (§9.7).
+INSTANTIATE_TEST_SUITE_P(HeightCodings, PrmStreamHostile, ::testing::Values(-1, 3, 7));
+
 }  // namespace
 }  // namespace prm::codec::test
 
 namespace prm::codec::test {
 namespace {
 
-// A golden PRM stream (format 1.1), by fingerprint: the encoder must keep producing exactly these bytes from the
+// A golden PRM stream (format 1.2), by fingerprint: the encoder must keep producing exactly these bytes from the
 // generating mesh, and they must keep decoding. A format change bumps the version (spec/CHANGES.md) and records a
-// new fingerprint; never update this silently.
+// new fingerprint; never update this silently. (The 1.1 fingerprint was 159 bytes, 14658986233315911954; a 1.1
+// stream is kept as conformance/vectors/010-prm-1.1-pillow.)
 uint64_t fnv_bytes(const std::vector<uint8_t>& b) {
   uint64_t h = 1469598103934665603ull;
   for (uint8_t x : b) {
@@ -219,9 +258,9 @@ TEST(PrmStream, GoldenFingerprint) {
   EncodeReport rep;
   const auto enc = encode_prm(m.q.data(), m.nv(), m.tris.data(), m.nt(), unit_frame(), o, &rep);
   ASSERT_TRUE(enc.ok());
-  EXPECT_EQ(enc.value[5], kFormatMinorPrm);
-  EXPECT_EQ(enc.value.size(), size_t{159});
-  EXPECT_EQ(fnv_bytes(enc.value), uint64_t{14658986233315911954ull}) << std::hex << fnv_bytes(enc.value);
+  EXPECT_EQ(enc.value[5], kFormatMinorPredicted);
+  EXPECT_EQ(enc.value.size(), size_t{160});
+  EXPECT_EQ(fnv_bytes(enc.value), uint64_t{8373705955872552472ull}) << fnv_bytes(enc.value);
   expect_round_trip(m, enc.value, rep);
 }
 

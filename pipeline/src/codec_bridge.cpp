@@ -31,14 +31,15 @@ bool has_prm_frame(const Mesh& mesh) {
 
 }  // namespace
 
-codec::Result<std::vector<uint8_t>> encode_prm_mesh(const remesh::PrmMesh& prm, codec::EncodeReport* report) {
+codec::Result<std::vector<uint8_t>> encode_prm_mesh(const remesh::PrmMesh& prm, codec::EncodeReport* report,
+                                                    const codec::PrmOptions& given) {
   const Mesh& m = prm.mesh;
   std::vector<uint32_t> q(m.positions.size() * 3);
   for (size_t v = 0; v < m.positions.size(); ++v)
     for (int a = 0; a < 3; ++a)
       q[3 * v + static_cast<size_t>(a)] = static_cast<uint32_t>(prm.frame.quantize(m.positions[v][a], a));
   const std::vector<uint32_t> tris = flat_triangles(m);
-  codec::PrmOptions options;
+  codec::PrmOptions options = given;
   options.grid = prm.lattice.A;
   return codec::encode_prm(q.data(), m.positions.size(), tris.data(), m.triangles.size(), codec_frame(prm.frame),
                            options, report);

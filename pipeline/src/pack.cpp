@@ -36,6 +36,7 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
   ro.reliefs.tau = options.tau;
   ro.reliefs.parallel = options.parallel;
   ro.parallel = options.parallel;
+  ro.fit_heights = options.fit_heights;
   ro.grid_size = options.grid_size;
   ro.grid_fraction = options.grid_fraction;
   // The target bounds the decoded mesh: quantizing the PRM to the stream's bits adds about 2% to the RMS error

@@ -112,6 +112,20 @@ TEST(Pack, SelfOverlappingPatchRoundTrips) {
   }
   EXPECT_TRUE(overlap);
   expect_exact_round_trip(prm, enc.value, rep);
+  // Linear prediction (§9.7): the overlapping patches by difference patches, or by prediction too (§9.7.3 defines
+  // the raster of a patch whose lattice points repeat); both decode exactly.
+  for (bool every : {false, true}) {
+    prm::codec::PrmOptions po;
+    po.height_depth = 7;
+    po.predict_every_patch = every;
+    prm::codec::EncodeReport r7;
+    const auto e7 = prm::pipeline::encode_prm_mesh(prm, &r7, po);
+    ASSERT_TRUE(e7.ok()) << e7.status.message;
+    EXPECT_EQ(r7.height_depth, 7);
+    if (every) EXPECT_EQ(r7.predicted_patches, r7.regular_patches);
+    else EXPECT_LT(r7.predicted_patches, r7.regular_patches);
+    expect_exact_round_trip(prm, e7.value, r7);
+  }
 }
 
 TEST(Pack, GridFromTargetError) {

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "height_fitting.h"
 #include "loop_fill.h"
 #include "prm/aabb_tree.h"
 #include "prm/error.h"
@@ -168,6 +169,11 @@ PrmMesh resample_and_merge(const LayoutInput& layout, const ResampleOptions& opt
   }
   st.vertices = nv;
   st.faces = nf;
+  if (options.fit_heights) {
+    const HeightFitStats hs = fit_heights(prm, input, tree, HeightFitOptions{});
+    st.heights_moved = hs.moved;
+    st.height_moves_reverted = hs.reverted;
+  }
   store_prm_labels(prm);
   return prm;
 }

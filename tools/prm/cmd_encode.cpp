@@ -11,6 +11,17 @@
 #include "prm/pipeline/codec_bridge.h"
 
 namespace prm::cli {
+namespace {
+
+// §9.4 / §9.7 How the heights were coded, in words.
+std::string height_coding(const codec::EncodeReport& rep) {
+  if (rep.height_depth == 7)
+    return "linear prediction in " + std::to_string(rep.predicted_patches) + " patches, difference depth " +
+           std::to_string(rep.overlap_depth) + " in the others";
+  return "difference patches, depth " + std::to_string(rep.height_depth);
+}
+
+}  // namespace
 
 void add_encode_command(CLI::App& root) {
   auto* cmd = root.add_subcommand("encode", "Compress a triangle mesh (OBJ/PLY/OFF/STL/glTF) into a .prm stream");
@@ -66,7 +77,10 @@ void add_encode_command(CLI::App& root) {
         j["prm"] = {{"regular_triangles", rep.regular_triangles},
                     {"regular_patches", rep.regular_patches},
                     {"patch_vertices", rep.patch_vertices},
-                    {"height_depth", rep.height_depth}};
+                    {"height_depth", rep.height_depth},
+                    {"height_coding", rep.height_depth == 7 ? "linear prediction" : "difference patches"},
+                    {"overlap_depth", rep.overlap_depth},
+                    {"predicted_patches", rep.predicted_patches}};
       std::printf("%s\n", j.dump().c_str());
     } else {
       std::printf("%s -> %s: %zu bytes (%.3f bits/vertex)\n", opt->input.c_str(), opt->output.c_str(),
@@ -75,10 +89,10 @@ void add_encode_command(CLI::App& root) {
                   rep.triangles, rep.components, rep.holes, rep.handles);
       if (rep.unreferenced_dropped) std::printf(", %u unreferenced vertices dropped", rep.unreferenced_dropped);
       if (was_prm)
-        std::printf("\n  piecewise regular: %u of %u triangles regular in %u patches (height depth %d); irregular "
+        std::printf("\n  piecewise regular: %u of %u triangles regular in %u patches (heights: %s); irregular "
                     "triangles %zu B (%.3f bpv), patches %zu B (%.3f bpv)",
-                    rep.regular_triangles, rep.triangles, rep.regular_patches, rep.height_depth, rep.irregular_bytes,
-                    8.0 * rep.irregular_bytes / v, rep.patch_bytes, 8.0 * rep.patch_bytes / v);
+                    rep.regular_triangles, rep.triangles, rep.regular_patches, height_coding(rep).c_str(),
+                    rep.irregular_bytes, 8.0 * rep.irregular_bytes / v, rep.patch_bytes, 8.0 * rep.patch_bytes / v);
       std::printf("\n  connectivity %zu B (%.3f bpv), positions %zu B (%.3f bpv, %d bits), header %zu B, "
                   "framing %zu B; %.1f ms\n",
                   rep.connectivity_bytes, 8.0 * rep.connectivity_bytes / v, rep.position_bytes,

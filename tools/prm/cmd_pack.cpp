@@ -20,7 +20,7 @@ void add_pack_command(CLI::App& root) {
     double target = 0, grid = 0, grid_fraction = 0, tau = 0.2;
     int bits = 12;
     size_t samples = 0;
-    bool json = false;
+    bool json = false, no_fit = false;
   };
   auto opt = std::make_shared<Options>();
   cmd->add_option("input", opt->input, "Mesh file (OBJ/PLY/OFF/STL/glTF); holes are closed first")
@@ -40,6 +40,8 @@ void add_pack_command(CLI::App& root) {
   cmd->add_option("--bits", opt->bits, "Quantization bits per coordinate (8..20, default 12)")->check(CLI::Range(8, 20));
   cmd->add_option("--samples", opt->samples, "Metro samples per surface for the target-error search (default 0: Metro's ten per face)");
   cmd->add_option("--keep-prm", opt->keep_prm, "Also write the piecewise regular mesh (PLY with lattice labels)");
+  cmd->add_flag("--interpolate-heights", opt->no_fit,
+                "Keep the lattice vertices on the input surface (no least-squares heights; for comparison)");
   cmd->add_flag("--json", opt->json, "Print the report as one JSON object");
   cmd->callback([opt] {
     if (opt->grid <= 0 && opt->grid_fraction <= 0 && opt->target <= 0)
@@ -52,6 +54,7 @@ void add_pack_command(CLI::App& root) {
     po.tau = opt->tau;
     po.bits = opt->bits;
     po.metro_samples = opt->samples;
+    po.fit_heights = !opt->no_fit;
     pipeline::PackResult r;
     try {
       r = pipeline::pack(input, po);

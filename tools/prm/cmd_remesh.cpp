@@ -19,7 +19,7 @@ void add_remesh_command(CLI::App& root) {
     std::string input, output;
     double grid = 0, grid_fraction = 0, target = 0, tau = 0.2;
     int bits = 12;
-    bool json = false, naive = false;
+    bool json = false, naive = false, no_fit = false;
     size_t samples = 0;  // Metro's default density (ten per face): what `prm compare` and the tests measure
   };
   auto opt = std::make_shared<Options>();
@@ -38,6 +38,8 @@ void add_remesh_command(CLI::App& root) {
   cmd->add_option("--bits", opt->bits, "Quantization bits of the codec that will store it (8..20)")->check(CLI::Range(8, 20));
   cmd->add_option("--samples", opt->samples, "Metro samples per surface for the error search (default 0: Metro's ten per face; fewer samples over-weight the vertices and bias the RMS up)");
   cmd->add_flag("--naive-reliefs", opt->naive, "Reliefs by closest axis only (for comparison)");
+  cmd->add_flag("--interpolate-heights", opt->no_fit,
+                "Keep the lattice vertices on the input surface (no least-squares heights; for comparison)");
   cmd->add_flag("--json", opt->json, "Print the report as one JSON object");
   cmd->callback([opt] {
     if (opt->grid <= 0 && opt->grid_fraction <= 0 && opt->target <= 0)
@@ -51,6 +53,7 @@ void add_remesh_command(CLI::App& root) {
     ro.bits = opt->bits;
     ro.reliefs.tau = opt->tau;
     ro.reliefs.naive = opt->naive;
+    ro.fit_heights = !opt->no_fit;
     ro.grid_size = opt->grid;
     ro.grid_fraction = opt->grid_fraction;
     ro.target_error = opt->target;

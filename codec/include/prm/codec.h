@@ -31,7 +31,8 @@ namespace prm::codec {
 // Format version written by this encoder (§3.2). A decoder accepts major version kFormatMajor only.
 constexpr uint8_t kFormatMajor = 1;
 constexpr uint8_t kFormatMinor = 0;     // general-path streams (§3.2)
-constexpr uint8_t kFormatMinorPrm = 1;  // streams with the PRM sections 3 and 4 (§3.2)
+constexpr uint8_t kFormatMinorPrm = 1;        // PRM streams of format 1.1 (§3.2): read, no longer written
+constexpr uint8_t kFormatMinorPredicted = 2;  // PRM streams written now: format 1.2 (§3.2, §7.3, §9.7)
 
 enum class Error : uint8_t {
   ok = 0,
@@ -115,7 +116,9 @@ struct EncodeReport {
   uint32_t regular_triangles = 0;
   uint32_t regular_patches = 0;
   uint32_t patch_vertices = 0;   // vertices whose positions the patches section carries
-  int height_depth = -1;         // -1: not a PRM stream
+  uint32_t predicted_patches = 0;  // patches whose heights are coded by linear prediction (§9.7)
+  int height_depth = -1;         // §9.4 0..6 (difference patches), 7 (linear prediction, §9.7); -1: not a PRM stream
+  int overlap_depth = -1;        // §9.7.2 with height_depth 7: the self-overlapping patches' difference depth
   // Decoded vertex k is input vertex vertex_order[k]; decoded triangle k is input triangle triangle_order[k], with
   // its corners rotated so that decoded corner 0 is input corner triangle_rotation[k] (0..2).
   std::vector<uint32_t> vertex_order;
@@ -141,7 +144,14 @@ Result<std::vector<uint8_t>> encode_quantized(const uint32_t* q, size_t num_vert
 // (docs/ARCHITECTURE.md: lattice point (i, j) of axis pair k at (U, W) = (A i + B j, C j), quantized units).
 struct PrmOptions {
   int64_t grid = 0;       // the lattice's grid size A in quantized units, 2 .. 2^bits
-  int height_depth = -1;  // §9.4 levels of difference patches, 0..6; -1: the encoder tries them all, keeps the best
+  // §9.4 The heights' coding: 0..6 levels of difference patches (the paper's), 7 linear prediction (§9.7), -1 the
+  // encoder tries them all and keeps the smallest.
+  int height_depth = -1;
+  // §9.7.2 With height_depth 7: the difference depth of self-overlapping patches, 0..6 (-1: 3, the paper's).
+  int overlap_depth = -1;
+  // §9.7.4 Linear prediction for every patch, also the self-overlapping ones (the encoder otherwise codes a patch
+  // with more than 1/64 of its vertices on shared lattice points by difference patches). For tests.
+  bool predict_every_patch = false;
 };
 
 // Encodes a PRM: the encoder checks which triangles are regular (§7.1: three lattice neighbours forming a grid

@@ -15,7 +15,9 @@ codec::Frame codec_frame(const remesh::QuantFrame& frame);
 
 // Encodes a piecewise regular mesh: positions quantized in the PRM's own frame (docs/ARCHITECTURE.md), so that grid
 // vertices are lattice points in the integer coordinates the codec sees.
-codec::Result<std::vector<uint8_t>> encode_prm_mesh(const remesh::PrmMesh& prm, codec::EncodeReport* report);
+// `options`: the height coding (§9.4, §9.7); its grid is the PRM's.
+codec::Result<std::vector<uint8_t>> encode_prm_mesh(const remesh::PrmMesh& prm, codec::EncodeReport* report,
+                                                    const codec::PrmOptions& options = {});
 
 // Encodes any mesh file's contents: a PRM (its PLY carries the prm-frame comment and lattice labels) through
 // encode_prm_mesh, anything else through the general path at `bits` bits.

@@ -25,6 +25,7 @@ struct PackOptions {
   int bits = 12;             // quantization of the stream
   size_t metro_samples = 0;  // per surface for the error (0: Metro's default, ten per face)
   bool parallel = true;
+  bool fit_heights = true;   // least-squares heights (remesh::RemeshOptions::fit_heights)
 };
 
 struct PackResult {

@@ -22,6 +22,7 @@ struct RemeshOptions {
   int max_search_steps = 8;
   double max_normal_angle_deg = 90;
   bool parallel = true;
+  bool fit_heights = true;       // least-squares heights of the lattice vertices (ResampleOptions::fit_heights)
 };
 
 // Symmetric RMS and maximum distance between the input and a candidate, as fractions of the input's diagonal.

@@ -1,0 +1,301 @@
+// §9.7 Heights by linear prediction (Height_Depth 7, format 1.2), shared by patch_encode.cpp and patch_decode.cpp:
+// the tap sets and their default weights, the predictor table, the raster order of a patch and the coding of its
+// heights, written once as a template over a "coder" that encodes the truth (encoder) or decodes (decoder).
+//
+// A patch whose vertices have distinct lattice coordinates is coded in raster order (increasing j, then i); each
+// height is predicted from already coded heights of the same patch at fixed lattice offsets (a "tap set", the first
+// one of the table whose offsets are all present), with integer weights in 1/256 that the stream carries (fitted by
+// the encoder) or that the spec fixes, and the residual is coded with a context from the set's size and the
+// residuals around it. Per patch the encoder may instead use the difference patches of §9.1-§9.3 (it does for
+// self-overlapping patches, where two vertices share a lattice point).
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <utility>
+#include <cstdint>
+#include <vector>
+
+#include "difference_patch.h"
+#include "signed_int_model.h"
+
+namespace prm::codec {
+
+// §9.7.1 The tap offsets (Δi, Δj), all before (0, 0) in raster order.
+constexpr int kLpOffsets = 14;
+constexpr std::array<std::array<int8_t, 2>, kLpOffsets> kLpOffset = {{{{0, -1}},
+                                                                      {{1, -1}},
+                                                                      {{-1, 0}},
+                                                                      {{1, -2}},
+                                                                      {{-1, -1}},
+                                                                      {{2, -1}},
+                                                                      {{0, -2}},
+                                                                      {{2, -2}},
+                                                                      {{-2, 0}},
+                                                                      {{1, -3}},
+                                                                      {{2, -3}},
+                                                                      {{-1, -2}},
+                                                                      {{-2, -1}},
+                                                                      {{-3, 0}}}};
+
+// §9.7.1 The tap sets, in selection order, as masks over the offsets (bit t = offset t); a set's taps are its
+// offsets in increasing t.
+constexpr int kLpSets = 38;
+constexpr uint16_t kLpSetMask[kLpSets] = {
+    0x0FFF, 0x0FDF, 0x0EFF, 0x07FF, 0x0BFF, 0x09FF, 0x06FF, 0x0F5F, 0x0EFB, 0x0B5F, 0x06EF, 0x06EB, 0x0B5D,
+    0x06AB, 0x0137, 0x0955, 0x003F, 0x00EB, 0x04AA, 0x1115, 0x0007, 0x000B, 0x0015, 0x2104, 0x0041, 0x0082,
+    0x0104, 0x0005, 0x0003, 0x0004, 0x0001, 0x0002, 0x0020, 0x0010, 0x0080, 0x0100, 0x0008, 0x0040};
+
+// §9.7.1 Weights are in units of 2^-kLpPrecisionBits; the first tap's weight is 256 minus the others' sum.
+constexpr int kLpPrecisionBits = 8;
+constexpr int32_t kLpOne = 1 << kLpPrecisionBits;
+constexpr int kLpMaxWeightClass = 12;  // |w_t| < 2^13 for the coded weights (t >= 1)
+constexpr int kLpMaxTaps = 12;
+
+// §9.7.1 Default weights of the sets 20..37, in tap order (the others have none: they are used only when the
+// stream gives their weights).
+constexpr int kLpFirstDefault = 20;
+constexpr int16_t kLpDefault[kLpSets - kLpFirstDefault][3] = {
+    {-256, 256, 256}, {256, 256, -256}, {256, 256, -256}, {768, -768, 256}, {512, -256, 0}, {512, -256, 0},
+    {512, -256, 0},   {128, 128, 0},    {128, 128, 0},    {256, 0, 0},      {256, 0, 0},    {256, 0, 0},
+    {256, 0, 0},      {256, 0, 0},      {256, 0, 0},      {256, 0, 0},      {256, 0, 0},    {256, 0, 0}};
+
+// The taps of set s: its offsets in increasing order; returns their number.
+inline int lp_set_taps(int s, std::array<int, kLpMaxTaps>& tap) {
+  int n = 0;
+  for (int t = 0; t < kLpOffsets; ++t)
+    if (kLpSetMask[s] >> t & 1) tap[static_cast<size_t>(n++)] = t;
+  return n;
+}
+
+// §9.7.4 Context groups by the number of taps of the set used (6: no set).
+constexpr int kLpGroups = 7;
+constexpr int kLpActivities = 9;
+inline int lp_group(int taps) {
+  return taps >= 12 ? 0 : taps >= 9 ? 1 : taps >= 6 ? 2 : taps >= 3 ? 3 : taps == 2 ? 4 : 5;
+}
+constexpr int kLpNoSet = 255;
+// §9.7.4 The offsets whose residuals give the activity context: (-1, 0), (0, -1), (1, -1), (-2, 0), (-1, -1), (2, -1).
+constexpr int kLpActivityTap[6] = {2, 0, 1, 8, 4, 5};
+
+struct LpModels {
+  BitModel method;  // §9.7.4 per patch: 1 = linear prediction, 0 = difference patches of Overlap_Depth
+  SignedIntModel weight;
+  SignedIntModel residual[kLpGroups][kLpActivities];
+};
+
+// §9.7.2 The predictor table of a stream: which sets are enabled and their weights; first_set[mask] is the first
+// enabled set all of whose offsets are in `mask` (kLpNoSet if none).
+struct LpTable {
+  std::array<bool, kLpSets> enabled{};
+  std::array<std::array<int32_t, kLpMaxTaps>, kLpSets> weight{};
+  std::array<std::array<int, kLpMaxTaps>, kLpSets> tap{};  // lp_set_taps
+  std::array<int, kLpSets> taps{};
+  std::vector<uint8_t> first_set;
+
+  LpTable() {
+    for (int s = 0; s < kLpSets; ++s) taps[s] = lp_set_taps(s, tap[s]);
+  }
+
+  void set_defaults(int s) {
+    for (int t = 0; t < kLpMaxTaps; ++t) weight[s][t] = t < 3 && s >= kLpFirstDefault ? kLpDefault[s - kLpFirstDefault][t] : 0;
+  }
+  void build_selection() {
+    first_set.assign(size_t{1} << kLpOffsets, kLpNoSet);
+    for (uint32_t mask = 0; mask < (1u << kLpOffsets); ++mask)
+      for (int s = 0; s < kLpSets; ++s)
+        if (enabled[s] && (mask & kLpSetMask[s]) == kLpSetMask[s]) {
+          first_set[mask] = static_cast<uint8_t>(s);
+          break;
+        }
+  }
+};
+
+// §9.7.3 A patch's raster order and its lattice lookup. The order is by increasing (j, i, local id); the vertex at
+// a lattice point is the one of lowest local id there. build() returns how many vertices share their lattice point
+// with a lower local id (a self-overlapping patch has some). Small footprints use a dense grid with a margin for
+// the offsets, sparse (long, thin) ones a sorted list searched by bisection; both give the same answers.
+class LpRaster {
+ public:
+  static constexpr uint32_t kNone = UINT32_MAX;
+
+  uint32_t build(const Level& level) {
+    const uint32_t n = level.size();
+    order_.clear();
+    dense_ = false;
+    if (n == 0) return 0;
+    int64_t imin = level.coord[0][0], imax = imin, jmin = level.coord[0][1], jmax = jmin;
+    for (const auto& c : level.coord) {
+      imin = std::min(imin, c[0]);
+      imax = std::max(imax, c[0]);
+      jmin = std::min(jmin, c[1]);
+      jmax = std::max(jmax, c[1]);
+    }
+    uint32_t shared = 0;
+    // Margin: offsets reach 3 to the left, 2 to the right and 3 rows down.
+    const int64_t width = imax - imin + 6, height = jmax - jmin + 4;
+    if (width * height <= 8 * int64_t{n} + 4096) {
+      dense_ = true;
+      i0_ = imin - 3;
+      j0_ = jmin - 3;
+      width_ = width;
+      grid_.assign(static_cast<size_t>(width * height), kNone);
+      extra_.clear();
+      for (uint32_t l = 0; l < n; ++l) {
+        const int64_t b = index(level.coord[l][0], level.coord[l][1]);
+        uint32_t& cell = grid_[static_cast<size_t>(b)];
+        if (cell == kNone) {
+          cell = l;
+        } else {
+          extra_.push_back({b, l});  // l > cell: ids are visited in increasing order
+          ++shared;
+        }
+      }
+      order_.reserve(n);
+      std::sort(extra_.begin(), extra_.end());
+      size_t e = 0;
+      for (size_t b = 0; b < grid_.size(); ++b) {
+        if (grid_[b] == kNone) continue;
+        order_.push_back(grid_[b]);
+        while (e < extra_.size() && extra_[e].first == static_cast<int64_t>(b)) order_.push_back(extra_[e++].second);
+      }
+      for (int t = 0; t < kLpOffsets; ++t) delta_[t] = kLpOffset[t][1] * width_ + kLpOffset[t][0];
+      return shared;
+    }
+    sorted_.resize(n);
+    for (uint32_t l = 0; l < n; ++l) sorted_[l] = {level.coord[l][1], level.coord[l][0], l};
+    std::sort(sorted_.begin(), sorted_.end(), [](const Key& a, const Key& b) {
+      return a.j != b.j ? a.j < b.j : a.i != b.i ? a.i < b.i : a.id < b.id;
+    });
+    for (uint32_t r = 1; r < n; ++r) shared += sorted_[r].j == sorted_[r - 1].j && sorted_[r].i == sorted_[r - 1].i;
+    order_.reserve(n);
+    for (const Key& k : sorted_) order_.push_back(k.id);
+    return shared;
+  }
+  const std::vector<uint32_t>& order() const { return order_; }
+
+  // The local ids at the 14 offsets around (i, j) (kNone where there is no vertex) and their mask.
+  uint32_t taps(int64_t i, int64_t j, std::array<uint32_t, kLpOffsets>& id) const {
+    uint32_t mask = 0;
+    if (dense_) {
+      const int64_t b = index(i, j);
+      for (int t = 0; t < kLpOffsets; ++t) {
+        id[t] = grid_[static_cast<size_t>(b + delta_[t])];
+        mask |= (id[t] != kNone ? 1u : 0u) << t;
+      }
+      return mask;
+    }
+    for (int t = 0; t < kLpOffsets; ++t) {
+      id[t] = find(i + kLpOffset[t][0], j + kLpOffset[t][1]);
+      mask |= (id[t] != kNone ? 1u : 0u) << t;
+    }
+    return mask;
+  }
+
+ private:
+  struct Key {
+    int64_t j, i;
+    uint32_t id;
+  };
+  int64_t index(int64_t i, int64_t j) const { return (j - j0_) * width_ + (i - i0_); }
+  uint32_t find(int64_t i, int64_t j) const {
+    auto it = std::lower_bound(sorted_.begin(), sorted_.end(), Key{j, i, 0},
+                               [](const Key& a, const Key& b) { return a.j != b.j ? a.j < b.j : a.i < b.i; });
+    // The first entry of (j, i) is its lowest local id.
+    return it != sorted_.end() && it->j == j && it->i == i ? it->id : kNone;
+  }
+
+  bool dense_ = false;
+  int64_t i0_ = 0, j0_ = 0, width_ = 0;
+  std::array<int64_t, kLpOffsets> delta_{};
+  std::vector<uint32_t> grid_;
+  std::vector<std::pair<int64_t, uint32_t>> extra_;  // (cell, id) of the vertices after a cell's first
+  std::vector<Key> sorted_;
+  std::vector<uint32_t> order_;
+};
+
+// §9.7.2 The predictor table's fields, coded by the encoder (`direct(bits, truth)` and `value(model, max_class,
+// truth, out)` code the truth) or decoded by the decoder (they return what they read) through the same steps.
+// `fitted[s]`: set s carries its weights. Ends with table.build_selection().
+template <typename Direct, typename Value>
+bool code_lp_table(LpTable& table, std::array<bool, kLpSets>& fitted, LpModels& m, Direct& direct, Value& value) {
+  for (int s = 0; s < kLpSets; ++s) {
+    table.enabled[s] = direct(1, table.enabled[s] ? 1u : 0u) != 0;
+    fitted[s] = table.enabled[s] && (s < kLpFirstDefault || direct(1, fitted[s] ? 1u : 0u) != 0);
+    if (!fitted[s]) {
+      table.set_defaults(s);
+      continue;
+    }
+    int64_t rest = 0;
+    for (int k = 1; k < table.taps[s]; ++k) {
+      int64_t w;
+      if (!value(m.weight, kLpMaxWeightClass, table.weight[s][k], w)) return false;
+      table.weight[s][k] = static_cast<int32_t>(w);
+      rest += w;
+    }
+    for (int k = table.taps[s]; k < kLpMaxTaps; ++k) table.weight[s][k] = 0;
+    table.weight[s][0] = static_cast<int32_t>(kLpOne - rest);
+  }
+  table.build_selection();
+  return true;
+}
+
+// floor(a / 2^k) for any sign.
+inline int64_t floor_shift(int64_t a, int k) { return a >= 0 ? a >> k : -((-a + (int64_t{1} << k) - 1) >> k); }
+
+// §9.7.4 The prediction of one height from its taps (set s), before clamping.
+inline int64_t lp_predict(const LpTable& table, int s, const std::array<uint32_t, kLpOffsets>& id,
+                          const std::vector<int64_t>& h) {
+  int64_t sum = 0;
+  for (int k = 0; k < table.taps[s]; ++k) sum += int64_t{table.weight[s][k]} * h[id[table.tap[s][k]]];
+  return floor_shift(sum + kLpOne / 2, kLpPrecisionBits);
+}
+
+// §9.7.4 The heights of one patch in raster order. `placed[l]`: local vertex l was placed by an earlier patch, its
+// height h[l] is known and not coded. h: in, the heights (encoder) or the placed ones (decoder); out, all heights.
+// `value(model, max_class, truth, out)` codes one signed integer. Returns false when a decoded height leaves
+// [lo, hi] (§9.7.4: bad_position). `res`, `coded`: scratch per local vertex.
+template <typename Value>
+bool code_lp_heights(const Level& level, const LpRaster& raster, const LpTable& table, LpModels& m, int bits,
+                     int64_t lo, int64_t hi, const std::vector<uint8_t>& placed, std::vector<int64_t>& h,
+                     std::vector<int64_t>& res, std::vector<uint8_t>& coded, Value& value) {
+  const uint32_t n = level.size();
+  res.assign(n, 0);
+  coded.assign(n, 0);
+  std::array<uint32_t, kLpOffsets> id;
+  int64_t previous = lo + (hi - lo) / 2;
+  for (uint32_t l : raster.order()) {
+    const uint32_t mask = raster.taps(level.coord[l][0], level.coord[l][1], id);
+    if (placed[l]) {
+      previous = h[l];
+      continue;
+    }
+    const int s = table.first_set[mask];
+    int64_t pred = s == kLpNoSet ? previous : lp_predict(table, s, id, h);
+    pred = pred < lo ? lo : pred > hi ? hi : pred;
+    int64_t sum = 0, count = 0;
+    for (int t : kLpActivityTap)
+      if (id[t] != LpRaster::kNone && coded[id[t]]) {
+        const int64_t r = res[id[t]];
+        sum += r < 0 ? -r : r;
+        ++count;
+      }
+    int activity = 8;
+    if (count > 0) {
+      const uint64_t x = static_cast<uint64_t>(3 * sum / count);
+      activity = x == 0 ? 0 : std::min(int_class(x) + 1, 7);  // the bit length of x, at most 7
+    }
+    const int group = s == kLpNoSet ? kLpGroups - 1 : lp_group(table.taps[s]);
+    int64_t r;
+    if (!value(m.residual[group][activity], bits, h[l] - pred, r)) return false;
+    const int64_t v = pred + r;
+    if (v < lo || v > hi) return false;
+    h[l] = v;
+    res[l] = r;
+    coded[l] = 1;
+    previous = v;
+  }
+  return true;
+}
+
+}  // namespace prm::codec

@@ -1,0 +1,142 @@
+// Least-squares heights (height_fitting.h). Point sampling puts every lattice vertex on the input surface, so each
+// triangle's chord cuts the curved surface on one side: the distance has a mean that a small vertical shift
+// removes. Each iteration samples every triangle at seven points, finds the input's closest point to each, and
+// moves each lattice vertex by the hat-weighted mean of the vertical offsets that would close the gap along the
+// triangle normals (a Jacobi step of the least-squares problem; a constant offset is removed in one step).
+// Measured on the venus at one grid size (g = 0.0042 of the diagonal, 52,120 vertices): RMS error 1.237e-4
+// interpolated, 0.884e-4 after one iteration, 0.845e-4 after two, 0.837e-4 after three; each iteration also adds
+// detail the heights' coder pays for (+4.7%, +7.1%, +8.5% bytes), so two iterations are the default: at the same
+// target error the grid is coarser and the stream smaller (venus at 1.3e-4: 16,308 / 16,050 / 16,249 bytes).
+#include "height_fitting.h"
+
+#include <tbb/parallel_for.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "prm/vec3.h"
+
+namespace prm::remesh {
+namespace {
+
+// Seven points per triangle (barycentric coordinates), equal weights.
+constexpr double kSamples[7][3] = {{1.0 / 3, 1.0 / 3, 1.0 / 3}, {2.0 / 3, 1.0 / 6, 1.0 / 6}, {1.0 / 6, 2.0 / 3, 1.0 / 6},
+                                   {1.0 / 6, 1.0 / 6, 2.0 / 3}, {1.0 / 6, 5.0 / 12, 5.0 / 12},
+                                   {5.0 / 12, 1.0 / 6, 5.0 / 12}, {5.0 / 12, 5.0 / 12, 1.0 / 6}};
+// A triangle tilted further than this from a vertex's axis (cosine) says little about that vertex's height.
+constexpr double kMinFacing = 0.3;
+
+}  // namespace
+
+HeightFitStats fit_heights(PrmMesh& prm, const Mesh& input, const AabbTree& tree, const HeightFitOptions& options) {
+  HeightFitStats stats;
+  Mesh& m = prm.mesh;
+  const size_t nv = m.positions.size(), nf = m.triangles.size();
+  if (nv == 0 || tree.empty()) return stats;
+  const double grid_length = static_cast<double>(prm.lattice.A) * prm.frame.step;
+  const double max_shift = options.max_shift * grid_length;
+  std::vector<int> axis(nv, -1);
+  for (size_t v = 0; v < nv; ++v)
+    if (prm.vertex_relief[v] >= 0) axis[v] = prm.relief_axis[static_cast<size_t>(prm.vertex_relief[v])];
+  // Reference normals: no triangle may turn against its orientation before the fit.
+  std::vector<Vec3> normal0(nf);
+  for (size_t f = 0; f < nf; ++f) {
+    const Tri& t = m.triangles[f];
+    normal0[f] = normalized(triangle_normal_area2(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]));
+  }
+  // A triangle is flipped when its normal is 90 degrees or more from the normal of the input face nearest to its
+  // centroid (the remesher's own test): the fit must not flip a triangle that was not.
+  auto flipped = [&](uint32_t f) {
+    const Tri& t = m.triangles[f];
+    const Vec3 n2 = triangle_normal_area2(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]);
+    if (!(norm2(n2) > 0)) return true;
+    const auto hit = tree.closest((m.positions[t[0]] + m.positions[t[1]] + m.positions[t[2]]) * (1.0 / 3.0));
+    if (!hit.found()) return false;
+    const Tri& s = input.triangles[hit.face];
+    return dot(n2, triangle_normal_area2(input.positions[s[0]], input.positions[s[1]], input.positions[s[2]])) <= 0;
+  };
+  std::vector<uint8_t> was_flipped(nf);
+  tbb::parallel_for(size_t{0}, nf, [&](size_t f) { was_flipped[f] = flipped(static_cast<uint32_t>(f)); });
+  std::vector<std::vector<uint32_t>> vertex_faces(nv);
+  for (uint32_t f = 0; f < nf; ++f)
+    for (uint32_t v : m.triangles[f]) vertex_faces[v].push_back(f);
+  const std::vector<Vec3> start = m.positions;
+  std::vector<double> shift(nv, 0.0);  // total move along the vertex's axis so far
+  std::vector<std::array<double, 6>> face_terms(nf);  // per corner: weighted offset sum, weight sum
+  std::vector<uint8_t> moved(nv, 0);
+  for (int it = 0; it < options.iterations; ++it) {
+    tbb::parallel_for(size_t{0}, nf, [&](size_t f) {
+      const Tri& t = m.triangles[f];
+      const Vec3 &a = m.positions[t[0]], &b = m.positions[t[1]], &c = m.positions[t[2]];
+      const Vec3 n2 = triangle_normal_area2(a, b, c);
+      const double area2 = norm(n2);
+      auto& out = face_terms[f];
+      out.fill(0.0);
+      if (!(area2 > 0)) return;
+      const Vec3 n = n2 * (1.0 / area2);
+      double facing[3];
+      bool any = false;
+      for (int k = 0; k < 3; ++k) {
+        facing[k] = axis[t[k]] >= 0 ? dot(n, axis_vector(axis[t[k]])) : 0.0;
+        any = any || facing[k] > kMinFacing;
+      }
+      if (!any) return;
+      AabbTree::Hit hint;
+      for (const auto& s : kSamples) {
+        const Vec3 p = a * s[0] + b * s[1] + c * s[2];
+        tree.closest(p, hint);
+        if (!hint.found()) continue;
+        const double offset = dot(hint.point - p, n);  // along the normal, to the input
+        for (int k = 0; k < 3; ++k) {
+          if (facing[k] <= kMinFacing) continue;
+          out[static_cast<size_t>(2 * k)] += s[k] * area2 * offset / facing[k];
+          out[static_cast<size_t>(2 * k + 1)] += s[k] * area2;
+        }
+      }
+    });
+    std::vector<double> num(nv, 0.0), den(nv, 0.0);
+    for (size_t f = 0; f < nf; ++f)
+      for (int k = 0; k < 3; ++k) {
+        const uint32_t v = m.triangles[f][static_cast<size_t>(k)];
+        num[v] += face_terms[f][static_cast<size_t>(2 * k)];
+        den[v] += face_terms[f][static_cast<size_t>(2 * k + 1)];
+      }
+    const std::vector<Vec3> before = m.positions;
+    std::vector<uint32_t> touched;
+    for (uint32_t v = 0; v < nv; ++v) {
+      if (axis[v] < 0 || !(den[v] > 0)) continue;
+      const double target = std::clamp(shift[v] + num[v] / den[v], -max_shift, max_shift);
+      if (target == shift[v]) continue;
+      m.positions[v] = start[v] + axis_vector(axis[v]) * target;
+      shift[v] = target;
+      touched.push_back(v);
+    }
+    // Undo moves that fold a triangle (its normal turning by more than 90 degrees from its original one), flip it
+    // against the input or make it degenerate, until none does.
+    for (bool again = true; again;) {
+      again = false;
+      for (uint32_t v : touched) {
+        if (m.positions[v] == before[v]) continue;
+        for (uint32_t f : vertex_faces[v]) {
+          const Tri& t = m.triangles[f];
+          const Vec3 n2 = triangle_normal_area2(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]);
+          if (dot(n2, normal0[f]) > 1e-3 * norm(n2) && norm2(n2) > 0 && (was_flipped[f] || !flipped(f))) continue;
+          for (uint32_t u : t)
+            if (m.positions[u] != before[u]) {
+              m.positions[u] = before[u];
+              shift[u] = dot(before[u] - start[u], axis_vector(axis[u]));
+              ++stats.reverted;
+              again = true;
+            }
+        }
+      }
+    }
+    for (uint32_t v : touched) moved[v] = moved[v] || m.positions[v] != start[v];
+  }
+  for (uint8_t x : moved) stats.moved += x;
+  return stats;
+}
+
+}  // namespace prm::remesh

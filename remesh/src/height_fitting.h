@@ -1,0 +1,27 @@
+// Least-squares heights: after merging, every lattice vertex moves along its relief's axis so that the piecewise
+// regular mesh approximates the input surface in the least-squares sense instead of interpolating it at the lattice
+// points. The lattice projection (what makes a triangle regular) is untouched; only heights change.
+#pragma once
+
+#include <cstddef>
+
+#include "prm/aabb_tree.h"
+#include "prm/mesh.h"
+#include "prm/remesh/resample.h"
+
+namespace prm::remesh {
+
+struct HeightFitOptions {
+  int iterations = 2;
+  double max_shift = 0.25;  // largest total move, in grid lengths
+};
+
+struct HeightFitStats {
+  size_t moved = 0;     // lattice vertices that moved
+  size_t reverted = 0;  // moves undone because a triangle around the vertex would have folded
+};
+
+// prm: a merged PRM with its labels (vertex_relief, relief_axis); tree: the input's closest-point tree.
+HeightFitStats fit_heights(PrmMesh& prm, const Mesh& input, const AabbTree& tree, const HeightFitOptions& options);
+
+}  // namespace prm::remesh
