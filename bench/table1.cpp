@@ -10,9 +10,12 @@
 //   enc, dec, remesh     PRM encode time, PRM decode time, remesh time (grid search included); and Draco's decode
 //                        time on the original in the same run (interleaved rounds, best round kept)
 // followed by the paper's own rows (its Table 1). Kilobytes are 1024 bytes, as the paper's (a 12-bit venus at
-// 116.3 KB).
+// 116.3 KB). The stream's bit depth is pack()'s choice (the smallest stream meeting the target; "bits"); each paper
+// model gets two more rows: "(12 bits)", the paper's protocol, and "(12 bits, paper n_r)", remeshed at the grid that
+// gives about the paper's vertex count (its e is then below the paper's), so that bits per vertex compare at equal
+// sampling density. S_r is Draco at the stream's bit depth, S_o Draco at 12 bits.
 //
-//   prm_bench_table1 [--csv=FILE] [--meshes=SUB[,SUB...]] [--target=E] [--rounds=N] [--no-cgal]
+//   prm_bench_table1 [--csv=FILE] [--meshes=SUB[,SUB...]] [--target=E] [--rounds=N] [--no-cgal] [--no-paper-density]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -67,6 +70,7 @@ struct Result {
   size_t s_o = 0, s_r = 0;  // Draco bytes
   size_t conn = 0, irreg = 0, geom = 0, total = 0;
   double enc = 0, dec = 0, draco_dec = 0, remesh = 0;
+  int bits = 12;  // the stream's quantization; Draco's S_r uses the same (S_o: 12 bits)
 };
 
 std::vector<std::string> split(const std::string& s, char sep) {
@@ -98,7 +102,10 @@ double best_time(F&& call, int rounds) {
   return best;
 }
 
-Result measure(const std::string& name, const std::string& path, double target, int rounds) {
+// grid_size > 0: remesh at that grid size (model units) instead of searching the one for `target`. bits: the
+// stream's quantization (0: pack() chooses, the smallest stream that meets the target).
+Result measure(const std::string& name, const std::string& path, double target, int rounds, double grid_size = 0,
+               int bits = 0) {
   Result r;
   r.mesh = name;
   r.target = target;
@@ -106,9 +113,14 @@ Result measure(const std::string& name, const std::string& path, double target, 
   r.n_o = original.num_vertices();
 
   prm::pipeline::PackOptions po;
-  po.target_error = target;  // pack() aims 4% below it, for the stream's quantization
+  po.bits = bits;
+  if (grid_size > 0)
+    po.grid_size = grid_size;
+  else
+    po.target_error = target;  // pack() aims 4% below it, for the stream's quantization
   const prm::pipeline::PackResult pack = prm::pipeline::pack(original, po);
   r.remesh = pack.seconds_repair + pack.seconds_remesh;
+  r.bits = pack.bits;
   r.n_r = pack.remesh.prm.mesh.num_vertices();
   r.g = static_cast<double>(pack.remesh.prm.lattice.A) * pack.remesh.prm.frame.step;
   r.g_rel = r.g / prm::bbox_diagonal(original);
@@ -140,12 +152,12 @@ Result measure(const std::string& name, const std::string& path, double target, 
   r.e_max = d.rel(d.max);
 
   // Draco on the original and on the PRM mesh.
-  const prm::bench::DracoCodec draco(10);
+  const prm::bench::DracoCodec draco(10), draco_same_bits(10, pack.bits);
   std::string why;
   auto on_original = draco.start(original, &why);
   if (!on_original || !on_original->encode()) throw std::runtime_error("Draco on the original: " + why);
   r.s_o = on_original->stream_bytes();
-  auto on_prm = draco.start(pack.remesh.prm.mesh, &why);
+  auto on_prm = draco_same_bits.start(pack.remesh.prm.mesh, &why);
   if (!on_prm || !on_prm->encode()) throw std::runtime_error("Draco on the PRM: " + why);
   r.s_r = on_prm->stream_bytes();
 
@@ -166,17 +178,17 @@ std::string kb(size_t bytes) {
 
 void print_markdown(const std::vector<Result>& rows) {
   std::printf(
-      "| mesh | n_o | n_r | g | g/diag | regular | e·1e4 | S_o KB | S_r KB | conn KB | irreg KB | geom KB | total KB | "
-      "bpv | total/S_o | total/S_r | enc ms | dec ms | Draco dec ms | dec Draco/PRM | remesh s |\n");
-  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+      "| mesh | n_o | n_r | g | g/diag | bits | regular | e·1e4 | S_o KB | S_r KB | conn KB | irreg KB | geom KB | "
+      "total KB | bpv | total/S_o | total/S_r | enc ms | dec ms | Draco dec ms | dec Draco/PRM | remesh s |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const Result& r : rows) {
     if (!r.failure.empty()) {
       std::printf("| %s | %zu | %s |||||||||||||||||||\n", r.mesh.c_str(), r.n_o, r.failure.c_str());
       continue;
     }
-    std::printf("| %s | %zu | %zu | %.4g | %.5f | %.1f%% | %.2f | %s | %s | %s | %s | %s | **%s** | **%.2f** | %.3f | %.3f | "
-                "%.1f | %.1f | %.1f | %.2f | %.1f |\n",
-                r.mesh.c_str(), r.n_o, r.n_r, r.g, r.g_rel, 100 * r.regular_share, r.e * 1e4, kb(r.s_o).c_str(),
+    std::printf("| %s | %zu | %zu | %.4g | %.5f | %d | %.1f%% | %.2f | %s | %s | %s | %s | %s | **%s** | **%.2f** | %.3f | "
+                "%.3f | %.1f | %.1f | %.1f | %.2f | %.1f |\n",
+                r.mesh.c_str(), r.n_o, r.n_r, r.g, r.g_rel, r.bits, 100 * r.regular_share, r.e * 1e4, kb(r.s_o).c_str(),
                 kb(r.s_r).c_str(), kb(r.conn).c_str(), kb(r.irreg).c_str(), kb(r.geom).c_str(), kb(r.total).c_str(),
                 8.0 * static_cast<double>(r.total) / static_cast<double>(r.n_r),
                 static_cast<double>(r.total) / static_cast<double>(r.s_o),
@@ -195,25 +207,27 @@ void print_markdown(const std::vector<Result>& rows) {
 
 void print_csv(std::FILE* f, const std::vector<Result>& rows) {
   std::fprintf(f,
-               "source,mesh,target,n_o,n_r,g,g_rel,regular_share,e,e_max,s_o_bytes,s_r_bytes,conn_bytes,irreg_bytes,"
+               "source,mesh,target,n_o,n_r,g,g_rel,bits,regular_share,e,e_max,s_o_bytes,s_r_bytes,conn_bytes,irreg_bytes,"
                "geom_bytes,total_bytes,bpv,total_over_s_o,total_over_s_r,encode_s,decode_s,draco_decode_s,remesh_s,"
                "failure\n");
   for (const Result& r : rows)
-    std::fprintf(f, "ours,%s,%g,%zu,%zu,%.9g,%.9g,%.6f,%.6g,%.6g,%zu,%zu,%zu,%zu,%zu,%zu,%.4f,%.4f,%.4f,%.6g,%.6g,%.6g,%.4g,%s\n",
-                 r.mesh.c_str(), r.target, r.n_o, r.n_r, r.g, r.g_rel, r.regular_share, r.e, r.e_max, r.s_o, r.s_r,
+    std::fprintf(f, "ours,%s,%g,%zu,%zu,%.9g,%.9g,%d,%.6f,%.6g,%.6g,%zu,%zu,%zu,%zu,%zu,%zu,%.4f,%.4f,%.4f,%.6g,%.6g,%.6g,%.4g,%s\n",
+                 r.mesh.c_str(), r.target, r.n_o, r.n_r, r.g, r.g_rel, r.bits, r.regular_share, r.e, r.e_max, r.s_o, r.s_r,
                  r.conn, r.irreg, r.geom, r.total, r.n_r ? 8.0 * static_cast<double>(r.total) / static_cast<double>(r.n_r) : 0.0,
                  r.s_o ? static_cast<double>(r.total) / static_cast<double>(r.s_o) : 0.0,
                  r.s_r ? static_cast<double>(r.total) / static_cast<double>(r.s_r) : 0.0, r.enc, r.dec, r.draco_dec,
                  r.remesh, r.failure.c_str());
   for (const PaperRow& p : kPaper)
-    std::fprintf(f, "paper,%s,%g,%.0f,%.0f,%g,,,%g,,%.0f,%.0f,%.0f,%.0f,%.0f,%.0f,%.4f,%.4f,%.4f,,%g,,,\n", p.model,
+    std::fprintf(f, "paper,%s,%g,%.0f,%.0f,%g,,12,,%g,,%.0f,%.0f,%.0f,%.0f,%.0f,%.0f,%.4f,%.4f,%.4f,,%g,,,\n", p.model,
                  p.e4 * 1e-4, p.n_o, p.n_r, p.g, p.e4 * 1e-4, p.s_o * 1024, p.s_r * 1024, p.conn * 1024,
                  p.irreg * 1024, p.geom * 1024, p.total * 1024, 8192.0 * p.total / p.n_r, p.total / p.s_o,
                  p.total / p.s_r, p.t);
 }
 
 int usage(const char* argv0) {
-  std::fprintf(stderr, "usage: %s [--csv=FILE] [--meshes=SUB[,SUB...]] [--target=E] [--rounds=N] [--no-cgal]\n",
+  std::fprintf(stderr,
+               "usage: %s [--csv=FILE] [--meshes=SUB[,SUB...]] [--target=E] [--rounds=N] [--no-cgal] "
+               "[--no-paper-density]\n",
                argv0);
   return 1;
 }
@@ -225,7 +239,7 @@ int main(int argc, char** argv) {
   std::vector<std::string> filters;
   double target = 2e-4;
   int rounds = 5;
-  bool cgal = true;
+  bool cgal = true, paper_density = true;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto value = [&](const char* key) -> const char* {
@@ -245,6 +259,8 @@ int main(int argc, char** argv) {
       rounds = std::max(1, std::atoi(v));
     } else if (a == "--no-cgal") {
       cgal = false;
+    } else if (a == "--no-paper-density") {
+      paper_density = false;
     } else {
       return usage(argv[0]);
     }
@@ -276,6 +292,17 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "table1: %s (target e %.2g)\n", e.name.c_str(), t);
     try {
       rows.push_back(measure(e.name, e.path, t, rounds));
+      // The paper's models also by the paper's protocol, 12 bits; and once more at 12 bits and the paper's vertex
+      // count: the grid scaled by sqrt(n_r / paper's n_r) (the vertex density goes as 1 / g^2), so that bits per
+      // vertex compare at equal sampling.
+      for (const PaperRow& p : kPaper)
+        if (paper_density && e.name == p.here && rows.back().failure.empty()) {
+          std::fprintf(stderr, "table1: %s at 12 bits\n", e.name.c_str());
+          rows.push_back(measure(e.name + " (12 bits)", e.path, t, rounds, 0, 12));
+          const double g = rows.back().g * std::sqrt(static_cast<double>(rows.back().n_r) / p.n_r);
+          std::fprintf(stderr, "table1: %s at the paper's n_r %.0f (grid %.4g)\n", e.name.c_str(), p.n_r, g);
+          rows.push_back(measure(e.name + " (12 bits, paper n_r)", e.path, t, rounds, g, 12));
+        }
     } catch (const std::exception& ex) {
       Result r;
       r.mesh = e.name;

@@ -6,6 +6,7 @@
 #include "prm/mesh_validate.h"
 #include "prm/metro_distance.h"
 #include "prm/pipeline/codec_bridge.h"
+#include "prm/remesh/lattice.h"
 
 namespace prm::pipeline {
 
@@ -15,42 +16,38 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-}  // namespace
-
-PackResult pack(const Mesh& input, const PackOptions& options) {
+// One bit depth: repair (done by the caller), remesh, encode.
+PackResult pack_at(const Mesh& source, const MetroReference& reference, const PackOptions& options, int bits,
+                   double initial_grid) {
   PackResult out;
   auto t0 = std::chrono::steady_clock::now();
-  // Paper §2: the remesher needs a closed manifold; the bunny's holes are closed by fans first.
-  const MeshReport check = validate_mesh(input);
-  Mesh closed;
-  if (!check.closed() || !check.clean() || !check.manifold()) {
-    closed = repair_mesh(input, &out.repair);  // throws InputError when it cannot be made a closed manifold
-    out.repaired = true;
-  }
-  const Mesh& source = out.repaired ? closed : input;
-  out.seconds_repair = seconds_since(t0);
-
-  t0 = std::chrono::steady_clock::now();
   remesh::RemeshOptions ro;
-  ro.bits = options.bits;
+  ro.bits = bits;
   ro.reliefs.tau = options.tau;
   ro.reliefs.parallel = options.parallel;
   ro.parallel = options.parallel;
   ro.fit_heights = options.fit_heights;
   ro.grid_size = options.grid_size;
   ro.grid_fraction = options.grid_fraction;
-  // The target bounds the decoded mesh: quantizing the PRM to the stream's bits adds about 2% to the RMS error
-  // (12 bits, venus: 1.237e-4 -> 1.26e-4), so the search aims 4% below it.
+  ro.initial_grid_size = initial_grid;
   ro.target_error = kQuantizationMargin * options.target_error;
-  MetroOptions mo;
-  mo.samples = options.metro_samples;  // 0: Metro's ten per face, as `prm compare` measures
-  const MetroReference reference(source, mo);
+  // The search measures what the decoder will output: the candidate quantized to the stream's frame (its lattice
+  // vertices are exact already; the heights and the other vertices round to the nearest step).
+  const remesh::QuantFrame frame = remesh::QuantFrame::of_mesh(source, bits);
   auto error = [&](const Mesh& candidate) {
-    const DistanceReport d = reference.compare(candidate);
+    Mesh q;
+    q.triangles = candidate.triangles;
+    q.positions.resize(candidate.positions.size());
+    for (size_t v = 0; v < q.positions.size(); ++v)
+      for (int a = 0; a < 3; ++a)
+        q.positions[v][static_cast<size_t>(a)] =
+            frame.to_real(frame.quantize(candidate.positions[v][static_cast<size_t>(a)], a), a);
+    const DistanceReport d = reference.compare(q);
     return remesh::ErrorEstimate{d.rel(d.rms), d.rel(d.max)};
   };
   out.remesh = remesh::remesh(source, ro, error);
   out.seconds_remesh = seconds_since(t0);
+  out.bits = bits;
 
   t0 = std::chrono::steady_clock::now();
   auto encoded = encode_prm_mesh(out.remesh.prm, &out.report);
@@ -59,7 +56,68 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
     throw InputError("the piecewise regular mesh could not be encoded (a remesher or codec bug): " +
                      encoded.status.message + " (spec §" + encoded.status.spec_section + ")");
   out.stream = std::move(encoded.value);
-  if (out.repaired) out.repaired_input = std::move(closed);
+  return out;
+}
+
+}  // namespace
+
+PackResult pack(const Mesh& input, const PackOptions& options) {
+  auto t0 = std::chrono::steady_clock::now();
+  // Paper §2: the remesher needs a closed manifold; the bunny's holes are closed by fans first.
+  const MeshReport check = validate_mesh(input);
+  Mesh closed;
+  RepairReport repair;
+  const bool repaired = !check.closed() || !check.clean() || !check.manifold();
+  if (repaired) closed = repair_mesh(input, &repair);  // throws InputError when it cannot be made a closed manifold
+  const Mesh& source = repaired ? closed : input;
+  const double seconds_repair = seconds_since(t0);
+  MetroOptions mo;
+  mo.samples = options.metro_samples;  // 0: Metro's ten per face, as `prm compare` measures
+  const MetroReference reference(source, mo);
+
+  PackResult out;
+  if (options.bits > 0 || options.target_error <= 0) {
+    out = pack_at(source, reference, options, options.bits > 0 ? options.bits : 12, 0);
+    out.bits_tried.push_back({out.bits, out.stream.size()});
+  } else {
+    // The bit depth is part of the search: fewer bits make every height cheaper and add quantization error, which a
+    // finer grid must buy back. From 12 bits down while the stream shrinks (up from 12 while the target is out of
+    // reach), each grid search starting from the previous grid size.
+    double grid = 0, seconds = 0;
+    bool have = false;
+    enum class Outcome { unreachable, smaller, larger };
+    auto attempt = [&](int bits) {
+      PackResult r;
+      try {
+        r = pack_at(source, reference, options, bits, grid);
+      } catch (const remesh::TargetNotReached&) {
+        return Outcome::unreachable;
+      }
+      seconds += r.seconds_remesh + r.seconds_encode;
+      out.bits_tried.push_back({bits, r.stream.size()});
+      grid = static_cast<double>(r.remesh.prm.lattice.A) * r.remesh.prm.frame.step;
+      if (have && r.stream.size() >= out.stream.size()) return Outcome::larger;
+      auto tried = std::move(out.bits_tried);
+      out = std::move(r);
+      out.bits_tried = std::move(tried);
+      have = true;
+      return Outcome::smaller;
+    };
+    if (attempt(12) == Outcome::unreachable) {
+      for (int bits = 13; bits <= kMaxPackBits && !have; ++bits) attempt(bits);
+    } else {
+      for (int bits = 11; bits >= kMinPackBits && attempt(bits) == Outcome::smaller; --bits) {
+      }
+    }
+    if (!have)
+      throw remesh::TargetNotReached("no grid size reached the target error " + std::to_string(options.target_error) +
+                                     " at 12 to " + std::to_string(kMaxPackBits) + " bits");
+    out.seconds_remesh = seconds - out.seconds_encode;  // the whole search
+  }
+  out.seconds_repair = seconds_repair;
+  out.repaired = repaired;
+  out.repair = repair;
+  if (repaired) out.repaired_input = std::move(closed);
   return out;
 }
 

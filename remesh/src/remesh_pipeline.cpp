@@ -100,7 +100,7 @@ RemeshResult remesh(const Mesh& input, const RemeshOptions& options, const Error
   // Search: the resampling error grows roughly like g^2 (linear interpolation of a smooth surface), so each step
   // rescales g by (E / e)^(1/p), with the exponent p fitted from the last two steps (clamped to [1, 3]).
   const double target = options.target_error;
-  int64_t grid = grid_of(1.5 * mean_edge_length(input));
+  int64_t grid = grid_of(options.initial_grid_size > 0 ? options.initial_grid_size : 1.5 * mean_edge_length(input));
   int64_t best_grid = -1;
   PrmMesh best;
   double best_error = 0;

@@ -18,7 +18,7 @@ void add_pack_command(CLI::App& root) {
   struct Options {
     std::string input, output, keep_prm;
     double target = 0, grid = 0, grid_fraction = 0, tau = 0.2;
-    int bits = 12;
+    int bits = 0;
     size_t samples = 0;
     bool json = false, no_fit = false;
   };
@@ -37,7 +37,10 @@ void add_pack_command(CLI::App& root) {
   te->excludes(g)->excludes(gf);
   g->excludes(gf);
   cmd->add_option("--tau", opt->tau, "Relief smoothing parameter in (0, 0.577) (default 0.2; paper: 0.1-0.3)");
-  cmd->add_option("--bits", opt->bits, "Quantization bits per coordinate (8..20, default 12)")->check(CLI::Range(8, 20));
+  cmd->add_option("--bits", opt->bits,
+                  "Quantization bits per coordinate (8..20). Default: with --target-error, the bit depth (8..16) that "
+                  "gives the smallest stream meeting it; otherwise 12")
+      ->check(CLI::Range(8, 20));
   cmd->add_option("--samples", opt->samples, "Metro samples per surface for the target-error search (default 0: Metro's ten per face)");
   cmd->add_option("--keep-prm", opt->keep_prm, "Also write the piecewise regular mesh (PLY with lattice labels)");
   cmd->add_flag("--interpolate-heights", opt->no_fit,
@@ -82,7 +85,8 @@ void add_pack_command(CLI::App& root) {
           {"grid_size", g},
           {"grid_steps", r.remesh.prm.lattice.A},
           {"tau", opt->tau},
-          {"bits", opt->bits},
+          {"bits", r.bits},
+          {"bits_tried", r.bits_tried},
           {"regular_share", s.faces ? static_cast<double>(s.regular_faces) / s.faces : 0.0},
           {"regular_patches", rep.regular_patches},
           {"rms_error", r.remesh.error.rms},
@@ -103,8 +107,14 @@ void add_pack_command(CLI::App& root) {
       std::printf("  remeshed: %zu -> %u vertices, grid %.6g (%lld steps), %.1f%% regular triangles in %u patches\n",
                   input.num_vertices(), rep.vertices, g, static_cast<long long>(r.remesh.prm.lattice.A),
                   s.faces ? 100.0 * static_cast<double>(s.regular_faces) / s.faces : 0.0, rep.regular_patches);
-      std::printf("  error of the remeshed mesh to the input: RMS %.3e, max %.3e of the diagonal (the search aims 4%% below\n"
-                  "  the target, for the quantization)\n", r.remesh.error.rms, r.remesh.error.max);
+      std::printf("  error of the decoded mesh to the input: RMS %.3e, max %.3e of the diagonal, at %d bits",
+                  r.remesh.error.rms, r.remesh.error.max, r.bits);
+      if (r.bits_tried.size() > 1) {
+        std::printf(" (bit depths tried:");
+        for (const auto& [b, bytes] : r.bits_tried) std::printf(" %d: %zu B", b, bytes);
+        std::printf(")");
+      }
+      std::printf("\n");
       std::printf("  stream: connectivity %zu B (%.2f bpv), irregular triangles %zu B (%.2f bpv), geometry %zu B "
                   "(%.2f bpv), header %zu B\n",
                   rep.connectivity_bytes, 8.0 * rep.connectivity_bytes / n_r, rep.irregular_bytes,

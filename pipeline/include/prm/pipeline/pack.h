@@ -12,8 +12,12 @@
 
 namespace prm::pipeline {
 
-// The grid search aims this much below PackOptions::target_error, for the quantization the stream adds.
-constexpr double kQuantizationMargin = 0.96;
+// The grid search measures the quantized candidate (what the decoder outputs) and aims this much below
+// PackOptions::target_error, for the difference between the search's samples and an independent measurement.
+constexpr double kQuantizationMargin = 0.99;
+// PackOptions::bits = 0 with a target error: the bit depths the search may choose.
+constexpr int kMinPackBits = 8;
+constexpr int kMaxPackBits = 16;
 
 struct PackOptions {
   // The grid size: exactly one of these three.
@@ -22,7 +26,8 @@ struct PackOptions {
   double grid_fraction = 0;  // fraction of the diagonal
   double grid_size = 0;      // model units
   double tau = 0.2;          // relief smoothing (paper §2.1)
-  int bits = 12;             // quantization of the stream
+  int bits = 0;              // quantization of the stream, 8..20; 0: with target_error, the bit depth (8..16) that
+                             // gives the smallest stream meeting it; otherwise 12
   size_t metro_samples = 0;  // per surface for the error (0: Metro's default, ten per face)
   bool parallel = true;
   bool fit_heights = true;   // least-squares heights (remesh::RemeshOptions::fit_heights)
@@ -34,6 +39,8 @@ struct PackResult {
   remesh::RemeshResult remesh;  // the PRM, the error of the remeshed mesh, the grid search
   RepairReport repair;
   bool repaired = false;        // the input had holes, pinches or degenerate faces
+  int bits = 12;                // the stream's quantization
+  std::vector<std::pair<int, size_t>> bits_tried;  // (bits, stream bytes) of every bit depth the search tried
   Mesh repaired_input;          // what was remeshed when `repaired` (the input itself otherwise, not copied)
   double seconds_repair = 0, seconds_remesh = 0, seconds_encode = 0;
 };

@@ -19,6 +19,7 @@ struct RemeshOptions {
   double grid_size = 0;          // model units
   double grid_fraction = 0;      // fraction of the bounding-box diagonal
   double target_error = 0;       // largest symmetric RMS distance, as a fraction of the diagonal: search g
+  double initial_grid_size = 0;  // with target_error: where the search starts (model units; 0: 1.5 mean edges)
   int max_search_steps = 8;
   double max_normal_angle_deg = 90;
   bool parallel = true;
