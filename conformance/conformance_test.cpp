@@ -2,6 +2,8 @@
 // re-encoding that mesh gives a stream that decodes to it again; each invalid stream is rejected with its error.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -9,6 +11,7 @@
 #include <vector>
 
 #include "prm/codec.h"
+#include "test_meshes.h"
 
 namespace {
 
@@ -78,6 +81,12 @@ TEST(Conformance, ValidStreamsDecodeExactly) {
     EXPECT_EQ(m.frame.bits, bits);
     EXPECT_EQ(m.quantized, q);
     EXPECT_EQ(m.triangles, tris);
+    const std::string json = read_text(d / "vector.json");
+    char hash[32];
+    std::snprintf(hash, sizeof hash, "0x%016llx",
+                  static_cast<unsigned long long>(prm::codec::test::fnv1a64_words(m.quantized,
+                                                                                  prm::codec::test::fnv1a64_words(m.triangles))));
+    EXPECT_EQ(json_field(json, "fnv1a64"), hash);
     // Today's encoder, given the decoded mesh, writes a stream that decodes to the same mesh.
     const auto again = encode_quantized(m.quantized.data(), m.num_vertices(), m.triangles.data(), m.num_triangles(),
                                         m.frame);

@@ -19,15 +19,6 @@ using namespace prm::codec;
 using namespace prm::codec::test;
 namespace fs = std::filesystem;
 
-uint64_t fnv(const std::vector<uint32_t>& a, uint64_t h = 1469598103934665603ull) {
-  for (uint32_t x : a)
-    for (int i = 0; i < 4; ++i) {
-      h ^= (x >> (8 * i)) & 0xFF;
-      h *= 1099511628211ull;
-    }
-  return h;
-}
-
 void write_bytes(const fs::path& p, const std::vector<uint8_t>& b) {
   std::ofstream f(p, std::ios::binary);
   f.write(reinterpret_cast<const char*>(b.data()), static_cast<std::streamsize>(b.size()));
@@ -58,7 +49,8 @@ void valid(const fs::path& dir, const std::string& name, const std::vector<uint8
   for (size_t t = 0; t < m.num_triangles(); ++t)
     e << "f " << m.triangles[3 * t] << ' ' << m.triangles[3 * t + 1] << ' ' << m.triangles[3 * t + 2] << '\n';
   std::ofstream j(d / "vector.json");
-  std::snprintf(buf, sizeof buf, "0x%016llx", static_cast<unsigned long long>(fnv(m.quantized, fnv(m.triangles))));
+  const uint64_t hash = fnv1a64_words(m.quantized, fnv1a64_words(m.triangles));
+  std::snprintf(buf, sizeof buf, "0x%016llx", static_cast<unsigned long long>(hash));
   j << "{\n  \"expect\": \"decode\",\n  \"format\": \"" << format << "\",\n  \"feature\": \"" << feature
     << "\",\n  \"spec_sections\": [" << sections << "],\n  \"bytes\": " << stream.size()
     << ",\n  \"vertices\": " << m.num_vertices() << ",\n  \"triangles\": " << m.num_triangles()

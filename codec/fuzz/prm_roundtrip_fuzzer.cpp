@@ -1,7 +1,7 @@
 // libFuzzer target: the PRM sections (§7-§9) round trip on lattice meshes built from the input: a closed pillow of
 // two hexagonal patches (test_meshes.h) whose size, grid, heights and off-lattice vertices come from the bytes.
-// Every one must encode (with at least one regular triangle), decode to itself exactly at every height depth, and
-// decode identically from the encoder's chosen depth.
+// Every one must encode (with at least one regular triangle), decode to itself exactly at every height depth and
+// with linear prediction (§9.7), and decode identically from the encoder's chosen coding.
 #include <cstdint>
 #include <cstring>
 #include <vector>
@@ -41,10 +41,12 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   const prm::codec::test::QuantizedMesh m = prm::codec::test::lattice_pillow(r, grid, top, bottom, &in, moved);
   Frame f;
   f.bits = 12;
-  for (int depth = -1; depth <= 6; ++depth) {
+  // -1: the encoder's choice; 0..6 difference patches; 7 linear prediction (§9.7), also forced on every patch.
+  for (int depth = -1; depth <= 8; ++depth) {
     PrmOptions o;
     o.grid = grid;
-    o.height_depth = depth;
+    o.height_depth = depth == 8 ? 7 : depth;
+    o.predict_every_patch = depth == 8;
     EncodeReport rep;
     const auto enc = encode_prm(m.q.data(), m.nv(), m.tris.data(), m.nt(), f, o, &rep);
     if (!enc.ok() || rep.regular_triangles == 0) __builtin_trap();

@@ -17,6 +17,17 @@ Level six_vertex_patch() {
   return level;
 }
 
+// The table of the §9.7.5 example: only the sets with default weights (20..37), with those weights.
+LpTable defaults_only() {
+  LpTable table;
+  for (int s = 0; s < kLpSets; ++s) {
+    table.enabled[s] = s >= kLpFirstDefault;
+    table.set_defaults(s);
+  }
+  table.build_selection();
+  return table;
+}
+
 TEST(HeightPrediction, TapSetsAreCausalAndOrdered) {
   for (const auto& o : kLpOffset) EXPECT_TRUE(o[1] < 0 || (o[1] == 0 && o[0] < 0));
   LpTable table;
@@ -33,12 +44,7 @@ TEST(HeightPrediction, TapSetsAreCausalAndOrdered) {
 TEST(HeightPrediction, WorkedExampleOfTheSpec) {
   // §9.7.5: sets 20..37 with their defaults, heights 10 12 11 13 15 16, bounds [0, 4095].
   const Level level = six_vertex_patch();
-  LpTable table;
-  for (int s = 0; s < kLpSets; ++s) {
-    table.enabled[s] = s >= kLpFirstDefault;
-    table.set_defaults(s);
-  }
-  table.build_selection();
+  const LpTable table = defaults_only();
   LpRaster raster;
   EXPECT_EQ(raster.build(level), 0u);
   EXPECT_EQ(raster.order(), (std::vector<uint32_t>{0, 1, 4, 2, 3, 5}));
@@ -73,9 +79,7 @@ TEST(HeightPrediction, WorkedExampleOfTheSpec) {
 
 TEST(HeightPrediction, PlacedVerticesAreNotCoded) {
   const Level level = six_vertex_patch();
-  LpTable table;
-  for (int s = 0; s < kLpSets; ++s) table.enabled[s] = s >= kLpFirstDefault, table.set_defaults(s);
-  table.build_selection();
+  const LpTable table = defaults_only();
   LpRaster raster;
   raster.build(level);
   std::vector<int64_t> h = {10, 12, 11, 13, 15, 16}, res;
@@ -93,9 +97,7 @@ TEST(HeightPrediction, PlacedVerticesAreNotCoded) {
 
 TEST(HeightPrediction, OutOfBoundsHeightIsRejected) {
   const Level level = six_vertex_patch();
-  LpTable table;
-  for (int s = 0; s < kLpSets; ++s) table.enabled[s] = s >= kLpFirstDefault, table.set_defaults(s);
-  table.build_selection();
+  const LpTable table = defaults_only();
   LpRaster raster;
   raster.build(level);
   std::vector<int64_t> h(6, 0), res;

@@ -558,4 +558,13 @@ QuantizedMesh lattice_pillow(int r, int64_t grid, int64_t (*top)(int, int, const
   return m;
 }
 
+uint64_t fnv1a64_words(const std::vector<uint32_t>& words, uint64_t h) {
+  for (uint32_t x : words)
+    for (int i = 0; i < 4; ++i) {
+      h ^= (x >> (8 * i)) & 0xFF;
+      h *= 1099511628211ull;
+    }
+  return h;
+}
+
 }  // namespace prm::codec::test

@@ -48,6 +48,10 @@ TestMesh load_mesh(const std::string& path);
 // no triangle repeats a vertex and every vertex has one fan; otherwise what is wrong.
 std::string manifold_problem(const TestMesh& mesh);
 
+// FNV-1a 64 of uint32 words taken as their little-endian bytes, chained from `h` (the golden streams' and the
+// conformance vectors' hash of the triangles, then the quantized positions).
+uint64_t fnv1a64_words(const std::vector<uint32_t>& words, uint64_t h = 1469598103934665603ull);
+
 std::vector<std::string> list_files(const std::string& dir, const std::vector<std::string>& extensions);
 
 }  // namespace prm::codec::test
