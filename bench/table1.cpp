@@ -67,7 +67,8 @@ struct Result {
   size_t n_o = 0, n_r = 0;
   double g = 0, g_rel = 0, e = 0, e_max = 0;
   double regular_share = 0;
-  size_t s_o = 0, s_r = 0;  // Draco bytes
+  size_t s_o = 0, s_r = 0;  // Draco bytes (S_r at the stream's bit depth)
+  size_t s_r12 = 0;          // Draco on the PRM at 12 bits, the paper's protocol
   size_t conn = 0, irreg = 0, geom = 0, total = 0;
   double enc = 0, dec = 0, draco_dec = 0, remesh = 0;
   int bits = 12;  // the stream's quantization; Draco's S_r uses the same (S_o: 12 bits)
@@ -160,6 +161,9 @@ Result measure(const std::string& name, const std::string& path, double target, 
   auto on_prm = draco_same_bits.start(pack.remesh.prm.mesh, &why);
   if (!on_prm || !on_prm->encode()) throw std::runtime_error("Draco on the PRM: " + why);
   r.s_r = on_prm->stream_bytes();
+  auto on_prm12 = draco.start(pack.remesh.prm.mesh, &why);
+  if (!on_prm12 || !on_prm12->encode()) throw std::runtime_error("Draco on the PRM at 12 bits: " + why);
+  r.s_r12 = on_prm12->stream_bytes();
 
   // Decode times, interleaved: PRM's stream, Draco's stream of the original.
   r.dec = r.draco_dec = HUGE_VAL;
@@ -179,21 +183,23 @@ std::string kb(size_t bytes) {
 void print_markdown(const std::vector<Result>& rows) {
   std::printf(
       "| mesh | n_o | n_r | g | g/diag | bits | regular | e·1e4 | S_o KB | S_r KB | conn KB | irreg KB | geom KB | "
-      "total KB | bpv | total/S_o | total/S_r | enc ms | dec ms | Draco dec ms | dec Draco/PRM | remesh s |\n");
-  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+      "total KB | bpv | total/S_o | total/S_r | total/S_r12 | enc ms | dec ms | Draco dec ms | dec Draco/PRM | "
+      "remesh s |\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const Result& r : rows) {
     if (!r.failure.empty()) {
       std::printf("| %s | %zu | %s |||||||||||||||||||\n", r.mesh.c_str(), r.n_o, r.failure.c_str());
       continue;
     }
     std::printf("| %s | %zu | %zu | %.4g | %.5f | %d | %.1f%% | %.2f | %s | %s | %s | %s | %s | **%s** | **%.2f** | %.3f | "
-                "%.3f | %.1f | %.1f | %.1f | %.2f | %.1f |\n",
+                "%.3f | %.3f | %.1f | %.1f | %.1f | %.2f | %.1f |\n",
                 r.mesh.c_str(), r.n_o, r.n_r, r.g, r.g_rel, r.bits, 100 * r.regular_share, r.e * 1e4, kb(r.s_o).c_str(),
                 kb(r.s_r).c_str(), kb(r.conn).c_str(), kb(r.irreg).c_str(), kb(r.geom).c_str(), kb(r.total).c_str(),
                 8.0 * static_cast<double>(r.total) / static_cast<double>(r.n_r),
                 static_cast<double>(r.total) / static_cast<double>(r.s_o),
-                static_cast<double>(r.total) / static_cast<double>(r.s_r), 1e3 * r.enc, 1e3 * r.dec, 1e3 * r.draco_dec,
-                r.draco_dec / r.dec, r.remesh);
+                static_cast<double>(r.total) / static_cast<double>(r.s_r),
+                static_cast<double>(r.total) / static_cast<double>(r.s_r12), 1e3 * r.enc, 1e3 * r.dec,
+                1e3 * r.draco_dec, r.draco_dec / r.dec, r.remesh);
   }
   std::printf("\nThe paper's Table 1 (its models; KB; T = decode seconds on a 650 MHz Pentium III):\n\n");
   std::printf("| model | n_o | n_r | g | e·1e4 | S_o KB | S_r KB | conn KB | irreg KB | geom KB | total KB | bpv | "
@@ -207,18 +213,19 @@ void print_markdown(const std::vector<Result>& rows) {
 
 void print_csv(std::FILE* f, const std::vector<Result>& rows) {
   std::fprintf(f,
-               "source,mesh,target,n_o,n_r,g,g_rel,bits,regular_share,e,e_max,s_o_bytes,s_r_bytes,conn_bytes,irreg_bytes,"
+               "source,mesh,target,n_o,n_r,g,g_rel,bits,regular_share,e,e_max,s_o_bytes,s_r_bytes,s_r12_bytes,conn_bytes,irreg_bytes,"
                "geom_bytes,total_bytes,bpv,total_over_s_o,total_over_s_r,encode_s,decode_s,draco_decode_s,remesh_s,"
                "failure\n");
   for (const Result& r : rows)
-    std::fprintf(f, "ours,%s,%g,%zu,%zu,%.9g,%.9g,%d,%.6f,%.6g,%.6g,%zu,%zu,%zu,%zu,%zu,%zu,%.4f,%.4f,%.4f,%.6g,%.6g,%.6g,%.4g,%s\n",
+    std::fprintf(f, "ours,%s,%g,%zu,%zu,%.9g,%.9g,%d,%.6f,%.6g,%.6g,%zu,%zu,%zu,%zu,%zu,%zu,%zu,%.4f,%.4f,%.4f,%.6g,%.6g,%.6g,%.4g,%s\n",
                  r.mesh.c_str(), r.target, r.n_o, r.n_r, r.g, r.g_rel, r.bits, r.regular_share, r.e, r.e_max, r.s_o, r.s_r,
+                 r.s_r12,
                  r.conn, r.irreg, r.geom, r.total, r.n_r ? 8.0 * static_cast<double>(r.total) / static_cast<double>(r.n_r) : 0.0,
                  r.s_o ? static_cast<double>(r.total) / static_cast<double>(r.s_o) : 0.0,
                  r.s_r ? static_cast<double>(r.total) / static_cast<double>(r.s_r) : 0.0, r.enc, r.dec, r.draco_dec,
                  r.remesh, r.failure.c_str());
   for (const PaperRow& p : kPaper)
-    std::fprintf(f, "paper,%s,%g,%.0f,%.0f,%g,,12,,%g,,%.0f,%.0f,%.0f,%.0f,%.0f,%.0f,%.4f,%.4f,%.4f,,%g,,,\n", p.model,
+    std::fprintf(f, "paper,%s,%g,%.0f,%.0f,%g,,12,,%g,,%.0f,%.0f,,%.0f,%.0f,%.0f,%.0f,%.4f,%.4f,%.4f,,%g,,,\n", p.model,
                  p.e4 * 1e-4, p.n_o, p.n_r, p.g, p.e4 * 1e-4, p.s_o * 1024, p.s_r * 1024, p.conn * 1024,
                  p.irreg * 1024, p.geom * 1024, p.total * 1024, 8192.0 * p.total / p.n_r, p.total / p.s_o,
                  p.total / p.s_r, p.t);

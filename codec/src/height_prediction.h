@@ -16,7 +16,9 @@
 #include <cstdint>
 #include <vector>
 
+#include "clers.h"
 #include "difference_patch.h"
+#include "fan_walk.h"
 #include "signed_int_model.h"
 
 namespace prm::codec {
@@ -251,14 +253,55 @@ inline int64_t lp_predict(const LpTable& table, int s, const std::array<uint32_t
   return floor_shift(sum + kLpOne / 2, kLpPrecisionBits);
 }
 
+// §9.7.4 What the heights of a patch see of the rest of the mesh: for a vertex without a tap set, its mesh
+// neighbours already decoded (placed by an earlier patch, or coded earlier in this patch).
+struct LpNeighbours {
+  const ClosedMesh* mesh = nullptr;
+  const std::vector<uint32_t>* vertex_corner = nullptr;  // §10.2 Vertex_Corner
+  const std::vector<uint8_t>* placed = nullptr;          // per mesh vertex: placed by an earlier patch
+  const uint32_t* q = nullptr;                           // 3 per mesh vertex: the placed vertices' positions
+  const std::vector<uint32_t>* local = nullptr;          // per mesh vertex: its local id in this patch, or UINT32_MAX
+  const std::vector<uint32_t>* global = nullptr;         // per local id: the mesh vertex
+  int height_axis = 0;                                   // the patch's pair k
+};
+
+// §9.7.4 The rounded mean of coordinate k over v's decoded mesh neighbours (fan walk of §10.2); false if none.
+inline bool lp_neighbour_mean(const LpNeighbours& nb, uint32_t l, const std::vector<int64_t>& h,
+                              const std::vector<uint8_t>& coded, int64_t& mean) {
+  const ClosedMesh& mesh = *nb.mesh;
+  const uint32_t v = (*nb.global)[l];
+  const uint32_t c0 = (*nb.vertex_corner)[v];
+  if (c0 == UINT32_MAX) return false;
+  int64_t sum = 0, count = 0;
+  uint32_t c = c0;
+  do {
+    const uint32_t x = mesh.corner_vertex[corner_next(c)];
+    const uint32_t lx = (*nb.local)[x];
+    if ((*nb.placed)[x]) {
+      sum += nb.q[3 * size_t{x} + static_cast<size_t>(nb.height_axis)];
+      ++count;
+    } else if (lx != UINT32_MAX && coded[lx]) {
+      sum += h[lx];
+      ++count;
+    }
+    c = fan_next(mesh.opp.data(), c);
+  } while (c != c0);
+  if (count == 0) return false;
+  const int64_t num = 2 * sum + count, den = 2 * count;  // floor((2 sum + n) / 2n), as §10.3's RoundedMean
+  mean = num >= 0 ? num / den : -((-num + den - 1) / den);
+  return true;
+}
+
 // §9.7.4 The heights of one patch in raster order. `placed[l]`: local vertex l was placed by an earlier patch, its
 // height h[l] is known and not coded. h: in, the heights (encoder) or the placed ones (decoder); out, all heights.
 // `value(model, max_class, truth, out)` codes one signed integer. Returns false when a decoded height leaves
-// [lo, hi] (§9.7.4: bad_position). `res`, `coded`: scratch per local vertex.
+// [lo, hi] (§9.7.4: bad_position). `res`, `coded`: scratch per local vertex. `nb` (optional): the mesh around the
+// patch, for the vertices without a tap set.
 template <typename Value>
 bool code_lp_heights(const Level& level, const LpRaster& raster, const LpTable& table, LpModels& m, int bits,
                      int64_t lo, int64_t hi, const std::vector<uint8_t>& placed, std::vector<int64_t>& h,
-                     std::vector<int64_t>& res, std::vector<uint8_t>& coded, Value& value) {
+                     std::vector<int64_t>& res, std::vector<uint8_t>& coded, Value& value,
+                     const LpNeighbours* nb = nullptr) {
   const uint32_t n = level.size();
   res.assign(n, 0);
   coded.assign(n, 0);
@@ -271,7 +314,13 @@ bool code_lp_heights(const Level& level, const LpRaster& raster, const LpTable& 
       continue;
     }
     const int s = table.first_set[mask];
-    int64_t pred = s == kLpNoSet ? previous : lp_predict(table, s, id, h);
+    int64_t pred = previous;
+    if (s != kLpNoSet) {
+      pred = lp_predict(table, s, id, h);
+    } else if (nb) {
+      int64_t mean;
+      if (lp_neighbour_mean(*nb, l, h, coded, mean)) pred = mean;
+    }
     pred = pred < lo ? lo : pred > hi ? hi : pred;
     int64_t sum = 0, count = 0;
     for (int t : kLpActivityTap)

@@ -4,6 +4,7 @@
 #include <memory>
 #include <string>
 
+#include "fan_walk.h"
 #include "patch_shared.h"
 #include "patches.h"
 #include "range_decoder.h"
@@ -49,6 +50,15 @@ Status read_patches(const uint8_t* data, size_t size, uint64_t offset, const Clo
   std::vector<uint8_t> scratch, placed;
   std::vector<int64_t> h, res;
   LpRaster raster;
+  std::vector<uint32_t> vertex_corner;
+  vertex_corners(mesh, vertex_corner);
+  LpNeighbours nb;
+  nb.mesh = &mesh;
+  nb.vertex_corner = &vertex_corner;
+  nb.placed = &known;
+  nb.q = q.data();
+  nb.local = &local;
+  nb.global = &global;
   std::array<int64_t, 2> previous{0, 0};
   const int64_t coord_bound = int64_t{1} << (bits + 1);
   for (size_t p = 0; p < ps.size(); ++p) {
@@ -69,11 +79,13 @@ Status read_patches(const uint8_t* data, size_t size, uint64_t offset, const Clo
     const size_t cu = static_cast<size_t>(pair_u(pair)), cw = static_cast<size_t>(pair_w(pair)),
                  ch = static_cast<size_t>(pair);
     // §8.3 Lattice coordinates, then base-plane positions.
-    if (!propagate_patch(mesh, ps, p, base, align, axis % 2 == 0, level, global, local)) {
+    auto release = [&] {
       for (uint32_t v : global) local[v] = UINT32_MAX;
+    };
+    if (!propagate_patch(mesh, ps, p, base, align, axis % 2 == 0, level, global, local)) {
+      release();
       return fail(Error::bad_position, "8.3", which + ": a vertex gets two lattice positions");
     }
-    for (uint32_t v : global) local[v] = UINT32_MAX;
     for (uint32_t l = 0; l < level.size(); ++l) {
       const uint32_t v = global[l];
       // |i|, |j| are bounded by the propagation from a bounded base (one step per triangle), so no overflow here.
@@ -94,7 +106,8 @@ Status read_patches(const uint8_t* data, size_t size, uint64_t offset, const Clo
         placed[l] = known[global[l]];
         h[l] = placed[l] ? int64_t{q[3 * size_t{global[l]} + ch]} : 0;
       }
-      if (!code_lp_heights(level, raster, table, models->lp, bits, lo[ch], hi[ch], placed, h, res, scratch, value))
+      nb.height_axis = pair;
+      if (!code_lp_heights(level, raster, table, models->lp, bits, lo[ch], hi[ch], placed, h, res, scratch, value, &nb))
         return fail(Error::bad_position, "9.7.4", which + ": a height outside the bounding box");
     } else {
       // §9.1-§9.3 Heights by difference patches.
@@ -104,6 +117,7 @@ Status read_patches(const uint8_t* data, size_t size, uint64_t offset, const Clo
         return fail(Error::bad_position, "9.3", which + ": a height difference out of range");
       h.swap(f[0]);
     }
+    release();
     if (rc.failed()) return fail(Error::truncated, "5.5", "the patch data ends early");
     for (uint32_t l = 0; l < level.size(); ++l) {
       const uint32_t v = global[l];

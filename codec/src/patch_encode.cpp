@@ -4,6 +4,7 @@
 #include <string>
 
 #include "height_prediction_fit.h"
+#include "fan_walk.h"
 #include "patch_shared.h"
 #include "patches.h"
 #include "range_encoder.h"
@@ -105,7 +106,8 @@ Status write_patches(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, in
   std::vector<uint8_t> scratch, placed;
   std::vector<int64_t> h, res;
   LpRaster raster;
-  // §8.3 One patch's axis, header fields and level 0 (lattice coordinates), checked against the positions.
+  // §8.3 One patch's axis, header fields and level 0 (lattice coordinates), checked against the positions; leaves
+  // local[] set for the patch's vertices (release() resets it).
   int axis = 0, align = 0;
   std::array<int64_t, 2> c0;
   auto prepare = [&](size_t p) -> Status {
@@ -121,7 +123,6 @@ Status write_patches(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, in
     if (!propagate_patch(mesh, ps, p, c0, align, axis % 2 == 0, level, global, local))
       return make_status(Error::internal, "8.3", 0, "lattice conflict in patch " + std::to_string(p));
     for (uint32_t l = 0; l < level.size(); ++l) {
-      local[global[l]] = UINT32_MAX;
       std::array<int64_t, 2> actual;
       if (!lattice_of(cq, lc, pair, global[l], actual) || actual != level.coord[l])
         return make_status(Error::internal, "8.3", 0, "patch " + std::to_string(p) + " propagates off its lattice");
@@ -130,7 +131,19 @@ Status write_patches(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, in
     for (uint32_t l = 0; l < level.size(); ++l) h[l] = cq[3 * size_t{global[l]} + static_cast<size_t>(pair)];
     return ok_status();
   };
+  auto release = [&] {
+    for (uint32_t v : global) local[v] = UINT32_MAX;
+  };
   known.assign(mesh.num_vertices, 0);
+  std::vector<uint32_t> vertex_corner;
+  vertex_corners(mesh, vertex_corner);
+  LpNeighbours nb;
+  nb.mesh = &mesh;
+  nb.vertex_corner = &vertex_corner;
+  nb.placed = &known;
+  nb.q = cq.data();
+  nb.local = &local;
+  nb.global = &global;
   // §9.7.2 The predictor table, fitted to the heights the patches will code (same placement order as below).
   LpTable table;
   std::array<bool, kLpSets> fitted{};
@@ -139,6 +152,7 @@ Status write_patches(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, in
     std::array<uint32_t, kLpOffsets> id;
     for (size_t p = 0; p < ps.size(); ++p) {
       PRM_TRY(prepare(p));
+      release();
       if (use_prediction(raster.build(level), level.size(), predict_every_patch))
         for (uint32_t l : raster.order()) {
           LpSample smp;
@@ -172,7 +186,8 @@ Status write_patches(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, in
       placed.resize(level.size());
       for (uint32_t l = 0; l < level.size(); ++l) placed[l] = known[global[l]];
       const int64_t lo = box_lo[static_cast<size_t>(pair)], hi = box_hi[static_cast<size_t>(pair)];
-      if (!code_lp_heights(level, raster, table, models->lp, bits, lo, hi, placed, h, res, scratch, value))
+      nb.height_axis = pair;
+      if (!code_lp_heights(level, raster, table, models->lp, bits, lo, hi, placed, h, res, scratch, value, &nb))
         return make_status(Error::internal, "9.7", 0, "height out of range in patch " + std::to_string(p));
       ++predicted_patches;
     } else {
@@ -184,6 +199,7 @@ Status write_patches(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, in
       if (!code_heights(level, d, bits, models->heights, f, plans, scratch, queue, true, value))
         return make_status(Error::internal, "9.3", 0, "height out of range in patch " + std::to_string(p));
     }
+    release();
     for (uint32_t l = 0; l < level.size(); ++l) {
       patch_vertices += !known[global[l]];
       known[global[l]] = 1;

@@ -9,20 +9,10 @@
 #include "adaptive_model.h"
 #include "clers.h"
 #include "corner_table.h"
+#include "fan_walk.h"
 
 namespace prm::codec {
 
-// §10.2 Vertex_Corner: for every vertex its lowest-numbered corner (where its fan walk starts).
-inline void vertex_corners(const ClosedMesh& mesh, std::vector<uint32_t>& first) {
-  first.assign(mesh.num_vertices, UINT32_MAX);
-  const uint32_t nc = static_cast<uint32_t>(mesh.corner_vertex.size());
-  for (uint32_t c = nc; c-- > 0;) first[mesh.corner_vertex[c]] = c;
-}
-
-// §10.2 The next corner of the fan walk about the vertex of corner c (across c's outgoing edge).
-inline uint32_t fan_next(const int32_t* opp, uint32_t c) {
-  return corner_prev(static_cast<uint32_t>(opp[corner_prev(c)]));
-}
 
 // floor(a / b) for b > 0.
 inline int64_t floor_div(int64_t a, int64_t b) { return a >= 0 ? a / b : -((-a + b - 1) / b); }

@@ -49,6 +49,7 @@ class SeamOptimizer {
     s.boundary_collapses = collapse_seam_vertices();
     s.area_flips = reduce_area_by_flips();
     s.repairs = remove_bad_triangles();
+    s.valence_flips = regularize_valences();
     for (auto f : mesh_.faces())
       if (!mesh_.status(f).deleted() && !face_ok(f)) ++s.unrepaired;
     compact();
@@ -268,6 +269,44 @@ class SeamOptimizer {
           queued[static_cast<size_t>(n.idx())] = 1;
         }
       }
+    }
+    return flips;
+  }
+
+  // Valence flips on the seams (ours): flip an edge between two reliefs when that brings the valences of its four
+  // vertices closer to 6 (the sum of (valence - 6)^2 falls by at least 2), both new triangles are valid and the
+  // quad's area grows by at most kValenceFlipArea. Regular vertices cost the connectivity coder almost nothing
+  // (spec §6.5.2) and the seams are where the irregular valences are; such an edge never borders a regular
+  // triangle (it joins two reliefs).
+  static constexpr double kValenceFlipArea = 0.2;
+  bool try_valence_flip(EH e) {
+    if (mesh_.status(e).deleted() || mesh_.is_boundary(e) || !mesh_.is_flip_ok(e)) return false;
+    const HH h = mesh_.halfedge_handle(e, 0), o = mesh_.halfedge_handle(e, 1);
+    const VH a = mesh_.from_vertex_handle(h), b = mesh_.to_vertex_handle(h);
+    const VH c = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h));
+    const VH d = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(o));
+    auto dev = [](int v) { return (v - 6) * (v - 6); };
+    const int va = static_cast<int>(mesh_.valence(a)), vb = static_cast<int>(mesh_.valence(b));
+    const int vc = static_cast<int>(mesh_.valence(c)), vd = static_cast<int>(mesh_.valence(d));
+    const int before_dev = dev(va) + dev(vb) + dev(vc) + dev(vd);
+    const int after_dev = dev(va - 1) + dev(vb - 1) + dev(vc + 1) + dev(vd + 1);
+    if (after_dev > before_dev - 2 || va <= 3 || vb <= 3) return false;
+    const double before = face_area2(a, b, c) + face_area2(b, a, d);
+    const double after = face_area2(c, a, d) + face_area2(d, b, c);
+    if (!(after <= before * (1.0 + kValenceFlipArea))) return false;
+    if (!triangle_ok(c, a, d, pos(c), pos(a), pos(d)) || !triangle_ok(d, b, c, pos(d), pos(b), pos(c))) return false;
+    mesh_.flip(e);
+    return true;
+  }
+
+  size_t regularize_valences() {
+    size_t flips = 0;
+    for (int round = 0; round < 4; ++round) {
+      size_t now = 0;
+      for (auto e : mesh_.edges())
+        if (!mesh_.status(e).deleted() && joins_reliefs(e) && try_valence_flip(e)) ++now;
+      flips += now;
+      if (now == 0) break;
     }
     return flips;
   }

@@ -21,6 +21,7 @@ struct SeamStats {
   size_t loops_broken = 0;        // coincident seam vertex pairs merged
   size_t boundary_collapses = 0;
   size_t area_flips = 0;
+  size_t valence_flips = 0;       // seam flips towards valence 6
   size_t repairs = 0;             // collapses and flips that removed flipped or zero-area triangles
   size_t unrepaired = 0;          // flipped or zero-area triangles left (0 on success)
   size_t non_lattice_vertices = 0;
