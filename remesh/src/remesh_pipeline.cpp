@@ -105,7 +105,8 @@ RemeshResult remesh(const Mesh& input, const RemeshOptions& options, const Error
   PrmMesh best;
   double best_error = 0;
   int64_t smallest_failing = INT64_MAX;
-  Progress progress("remesh: searching the grid size", static_cast<size_t>(options.max_search_steps));
+  Progress progress("remesh: searching the grid size at " + std::to_string(options.bits) + " bits",
+                    static_cast<size_t>(options.max_search_steps));
   for (int s = 0; s < options.max_search_steps; ++s) {
     PrmMesh prm = attempt(grid);
     progress.advance();
