@@ -256,13 +256,21 @@ inline int64_t lp_predict(const LpTable& table, int s, const std::array<uint32_t
 // §9.7.4 What the heights of a patch see of the rest of the mesh: for a vertex without a tap set, its mesh
 // neighbours already decoded (placed by an earlier patch, or coded earlier in this patch).
 struct LpNeighbours {
-  const ClosedMesh* mesh = nullptr;
-  const std::vector<uint32_t>* vertex_corner = nullptr;  // §10.2 Vertex_Corner
-  const std::vector<uint8_t>* placed = nullptr;          // per mesh vertex: placed by an earlier patch
-  const uint32_t* q = nullptr;                           // 3 per mesh vertex: the placed vertices' positions
-  const std::vector<uint32_t>* local = nullptr;          // per mesh vertex: its local id in this patch, or UINT32_MAX
-  const std::vector<uint32_t>* global = nullptr;         // per local id: the mesh vertex
-  int height_axis = 0;                                   // the patch's pair k
+  // placed: per mesh vertex, placed by an earlier patch; q: 3 per mesh vertex, the placed vertices' positions;
+  // local: per mesh vertex, its local id in the current patch or UINT32_MAX; global: per local id, the mesh vertex.
+  // The vectors are the caller's and must outlive this.
+  LpNeighbours(const ClosedMesh& m, const std::vector<uint8_t>& placed_vertices, const uint32_t* positions,
+               const std::vector<uint32_t>& local_ids, const std::vector<uint32_t>& global_ids)
+      : mesh(&m), placed(&placed_vertices), q(positions), local(&local_ids), global(&global_ids) {
+    vertex_corners(m, vertex_corner);
+  }
+  const ClosedMesh* mesh;
+  const std::vector<uint8_t>* placed;
+  const uint32_t* q;
+  const std::vector<uint32_t>* local;
+  const std::vector<uint32_t>* global;
+  std::vector<uint32_t> vertex_corner;  // §10.2 Vertex_Corner
+  int height_axis = 0;                  // the current patch's pair k
 };
 
 // §9.7.4 The rounded mean of coordinate k over v's decoded mesh neighbours (fan walk of §10.2); false if none.
@@ -270,7 +278,7 @@ inline bool lp_neighbour_mean(const LpNeighbours& nb, uint32_t l, const std::vec
                               const std::vector<uint8_t>& coded, int64_t& mean) {
   const ClosedMesh& mesh = *nb.mesh;
   const uint32_t v = (*nb.global)[l];
-  const uint32_t c0 = (*nb.vertex_corner)[v];
+  const uint32_t c0 = nb.vertex_corner[v];
   if (c0 == UINT32_MAX) return false;
   int64_t sum = 0, count = 0;
   uint32_t c = c0;

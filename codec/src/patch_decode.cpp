@@ -4,7 +4,6 @@
 #include <memory>
 #include <string>
 
-#include "fan_walk.h"
 #include "patch_shared.h"
 #include "patches.h"
 #include "range_decoder.h"
@@ -50,15 +49,7 @@ Status read_patches(const uint8_t* data, size_t size, uint64_t offset, const Clo
   std::vector<uint8_t> scratch, placed;
   std::vector<int64_t> h, res;
   LpRaster raster;
-  std::vector<uint32_t> vertex_corner;
-  vertex_corners(mesh, vertex_corner);
-  LpNeighbours nb;
-  nb.mesh = &mesh;
-  nb.vertex_corner = &vertex_corner;
-  nb.placed = &known;
-  nb.q = q.data();
-  nb.local = &local;
-  nb.global = &global;
+  LpNeighbours nb(mesh, known, q.data(), local, global);  // §9.7.4 for the vertices without a tap set
   std::array<int64_t, 2> previous{0, 0};
   const int64_t coord_bound = int64_t{1} << (bits + 1);
   for (size_t p = 0; p < ps.size(); ++p) {

@@ -4,7 +4,6 @@
 #include <string>
 
 #include "height_prediction_fit.h"
-#include "fan_walk.h"
 #include "patch_shared.h"
 #include "patches.h"
 #include "range_encoder.h"
@@ -135,15 +134,7 @@ Status write_patches(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, in
     for (uint32_t v : global) local[v] = UINT32_MAX;
   };
   known.assign(mesh.num_vertices, 0);
-  std::vector<uint32_t> vertex_corner;
-  vertex_corners(mesh, vertex_corner);
-  LpNeighbours nb;
-  nb.mesh = &mesh;
-  nb.vertex_corner = &vertex_corner;
-  nb.placed = &known;
-  nb.q = cq.data();
-  nb.local = &local;
-  nb.global = &global;
+  LpNeighbours nb(mesh, known, cq.data(), local, global);  // §9.7.4 for the vertices without a tap set
   // §9.7.2 The predictor table, fitted to the heights the patches will code (same placement order as below).
   LpTable table;
   std::array<bool, kLpSets> fitted{};

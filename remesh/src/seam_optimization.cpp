@@ -228,18 +228,31 @@ class SeamOptimizer {
     return a.relief < 0 || b.relief < 0 || a.relief != b.relief;
   }
 
-  // Flip e if both new triangles are valid and the area shrinks.
-  bool try_area_flip(EH e) {
+  // The quad of a flippable edge: faces (a, b, c) and (b, a, d), which a flip turns into (c, a, d) and (d, b, c).
+  struct Quad {
+    VH a, b, c, d;
+    double area_before, area_after;  // twice the two faces' areas, before and after the flip
+  };
+  bool flippable(EH e, Quad& q) const {
     if (mesh_.status(e).deleted() || mesh_.is_boundary(e) || !mesh_.is_flip_ok(e)) return false;
     const HH h = mesh_.halfedge_handle(e, 0), o = mesh_.halfedge_handle(e, 1);
-    const VH a = mesh_.from_vertex_handle(h), b = mesh_.to_vertex_handle(h);
-    const VH c = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h));
-    const VH d = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(o));
-    // Faces (a, b, c) and (b, a, d) become (c, a, d) and (d, b, c).
-    const double before = face_area2(a, b, c) + face_area2(b, a, d);
-    const double after = face_area2(c, a, d) + face_area2(d, b, c);
-    if (!(after < before * (1.0 - 1e-9))) return false;
-    if (!triangle_ok(c, a, d, pos(c), pos(a), pos(d)) || !triangle_ok(d, b, c, pos(d), pos(b), pos(c))) return false;
+    q.a = mesh_.from_vertex_handle(h);
+    q.b = mesh_.to_vertex_handle(h);
+    q.c = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h));
+    q.d = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(o));
+    q.area_before = face_area2(q.a, q.b, q.c) + face_area2(q.b, q.a, q.d);
+    q.area_after = face_area2(q.c, q.a, q.d) + face_area2(q.d, q.b, q.c);
+    return true;
+  }
+  bool flip_is_valid(const Quad& q) const {
+    return triangle_ok(q.c, q.a, q.d, pos(q.c), pos(q.a), pos(q.d)) &&
+           triangle_ok(q.d, q.b, q.c, pos(q.d), pos(q.b), pos(q.c));
+  }
+
+  // Flip e if both new triangles are valid and the area shrinks.
+  bool try_area_flip(EH e) {
+    Quad q;
+    if (!flippable(e, q) || !(q.area_after < q.area_before * (1.0 - 1e-9)) || !flip_is_valid(q)) return false;
     mesh_.flip(e);
     return true;
   }
@@ -280,21 +293,15 @@ class SeamOptimizer {
   // triangle (it joins two reliefs).
   static constexpr double kValenceFlipArea = 0.2;
   bool try_valence_flip(EH e) {
-    if (mesh_.status(e).deleted() || mesh_.is_boundary(e) || !mesh_.is_flip_ok(e)) return false;
-    const HH h = mesh_.halfedge_handle(e, 0), o = mesh_.halfedge_handle(e, 1);
-    const VH a = mesh_.from_vertex_handle(h), b = mesh_.to_vertex_handle(h);
-    const VH c = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h));
-    const VH d = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(o));
+    Quad q;
+    if (!flippable(e, q)) return false;
     auto dev = [](int v) { return (v - 6) * (v - 6); };
-    const int va = static_cast<int>(mesh_.valence(a)), vb = static_cast<int>(mesh_.valence(b));
-    const int vc = static_cast<int>(mesh_.valence(c)), vd = static_cast<int>(mesh_.valence(d));
-    const int before_dev = dev(va) + dev(vb) + dev(vc) + dev(vd);
-    const int after_dev = dev(va - 1) + dev(vb - 1) + dev(vc + 1) + dev(vd + 1);
-    if (after_dev > before_dev - 2 || va <= 3 || vb <= 3) return false;
-    const double before = face_area2(a, b, c) + face_area2(b, a, d);
-    const double after = face_area2(c, a, d) + face_area2(d, b, c);
-    if (!(after <= before * (1.0 + kValenceFlipArea))) return false;
-    if (!triangle_ok(c, a, d, pos(c), pos(a), pos(d)) || !triangle_ok(d, b, c, pos(d), pos(b), pos(c))) return false;
+    const int va = static_cast<int>(mesh_.valence(q.a)), vb = static_cast<int>(mesh_.valence(q.b));
+    const int vc = static_cast<int>(mesh_.valence(q.c)), vd = static_cast<int>(mesh_.valence(q.d));
+    const int before = dev(va) + dev(vb) + dev(vc) + dev(vd);
+    const int after = dev(va - 1) + dev(vb - 1) + dev(vc + 1) + dev(vd + 1);
+    if (after > before - 2 || va <= 3 || vb <= 3) return false;
+    if (!(q.area_after <= q.area_before * (1.0 + kValenceFlipArea)) || !flip_is_valid(q)) return false;
     mesh_.flip(e);
     return true;
   }
