@@ -2,6 +2,7 @@
 // it is used: axis and alignment in 0..5, lattice coordinates consistent over the patch and with vertices earlier
 // patches placed, positions inside the header's bounding box.
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "patch_shared.h"
@@ -49,7 +50,9 @@ Status read_patches(const uint8_t* data, size_t size, uint64_t offset, const Clo
   std::vector<uint8_t> scratch, placed;
   std::vector<int64_t> h, res;
   LpRaster raster;
-  LpNeighbours nb(mesh, known, q.data(), local, global);  // §9.7.4 for the vertices without a tap set
+  // §9.7.4 For the vertices without a tap set; only linear-prediction streams need it (Vertex_Corner is O(T)).
+  std::optional<LpNeighbours> nb;
+  if (predicted) nb.emplace(mesh, known, q.data(), local, global);
   std::array<int64_t, 2> previous{0, 0};
   const int64_t coord_bound = int64_t{1} << (bits + 1);
   for (size_t p = 0; p < ps.size(); ++p) {
@@ -97,8 +100,8 @@ Status read_patches(const uint8_t* data, size_t size, uint64_t offset, const Clo
         placed[l] = known[global[l]];
         h[l] = placed[l] ? int64_t{q[3 * size_t{global[l]} + ch]} : 0;
       }
-      nb.height_axis = pair;
-      if (!code_lp_heights(level, raster, table, models->lp, bits, lo[ch], hi[ch], placed, h, res, scratch, value, &nb))
+      nb->height_axis = pair;
+      if (!code_lp_heights(level, raster, table, models->lp, bits, lo[ch], hi[ch], placed, h, res, scratch, value, &*nb))
         return fail(Error::bad_position, "9.7.4", which + ": a height outside the bounding box");
     } else {
       // §9.1-§9.3 Heights by difference patches.

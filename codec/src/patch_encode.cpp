@@ -1,6 +1,7 @@
 // §7.1 The encoder's regularity check and §8-§9 the patches section, encoder side (patch headers, heights by
 // recursive difference patches). The decoder side is patch_decode.cpp; the shared steps are in patch_shared.h.
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "height_prediction_fit.h"
@@ -134,7 +135,9 @@ Status write_patches(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, in
     for (uint32_t v : global) local[v] = UINT32_MAX;
   };
   known.assign(mesh.num_vertices, 0);
-  LpNeighbours nb(mesh, known, cq.data(), local, global);  // §9.7.4 for the vertices without a tap set
+  // §9.7.4 For the vertices without a tap set; only linear-prediction streams need it (Vertex_Corner is O(T)).
+  std::optional<LpNeighbours> nb;
+  if (predicted) nb.emplace(mesh, known, cq.data(), local, global);
   // §9.7.2 The predictor table, fitted to the heights the patches will code (same placement order as below).
   LpTable table;
   std::array<bool, kLpSets> fitted{};
@@ -177,8 +180,8 @@ Status write_patches(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, in
       placed.resize(level.size());
       for (uint32_t l = 0; l < level.size(); ++l) placed[l] = known[global[l]];
       const int64_t lo = box_lo[static_cast<size_t>(pair)], hi = box_hi[static_cast<size_t>(pair)];
-      nb.height_axis = pair;
-      if (!code_lp_heights(level, raster, table, models->lp, bits, lo, hi, placed, h, res, scratch, value, &nb))
+      nb->height_axis = pair;
+      if (!code_lp_heights(level, raster, table, models->lp, bits, lo, hi, placed, h, res, scratch, value, &*nb))
         return make_status(Error::internal, "9.7", 0, "height out of range in patch " + std::to_string(p));
       ++predicted_patches;
     } else {
