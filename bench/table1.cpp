@@ -138,7 +138,8 @@ Result measure(const std::string& name, const std::string& path, double target, 
   r.enc = std::min(pack.seconds_encode, best_time(
                                             [&] {
                                               prm::codec::EncodeReport rep;
-                                              (void)prm::pipeline::encode_prm_mesh(pack.remesh.prm, &rep);
+                                              (void)prm::pipeline::encode_prm_mesh(pack.remesh.prm, &rep,
+                                                                                   pack.codec_options);
                                             },
                                             std::max(1, rounds / 3)));
 
@@ -158,10 +159,11 @@ Result measure(const std::string& name, const std::string& path, double target, 
   auto on_original = draco.start(original, &why);
   if (!on_original || !on_original->encode()) throw std::runtime_error("Draco on the original: " + why);
   r.s_o = on_original->stream_bytes();
-  auto on_prm = draco_same_bits.start(pack.remesh.prm.mesh, &why);
+  // "The same PRM": the mesh the stream holds (the decoded one; its heights are the encoder's choice).
+  auto on_prm = draco_same_bits.start(out, &why);
   if (!on_prm || !on_prm->encode()) throw std::runtime_error("Draco on the PRM: " + why);
   r.s_r = on_prm->stream_bytes();
-  auto on_prm12 = draco.start(pack.remesh.prm.mesh, &why);
+  auto on_prm12 = draco.start(out, &why);
   if (!on_prm12 || !on_prm12->encode()) throw std::runtime_error("Draco on the PRM at 12 bits: " + why);
   r.s_r12 = on_prm12->stream_bytes();
 

@@ -98,6 +98,14 @@ Status encode_impl(const uint32_t* q, size_t nv, const uint32_t* tris, size_t nt
       return make_status(Error::invalid_argument, "9.4", 0, "height depth must be 0..7 (or -1: best)");
     if (prm->overlap_depth < -1 || prm->overlap_depth > kMaxHeightDepth)
       return make_status(Error::invalid_argument, "9.7.2", 0, "overlap depth must be 0..6 (or -1: 3)");
+    if (!(prm->height_tolerance >= 0 && prm->height_tolerance <= 16) || !(prm->height_lambda >= 0 && prm->height_lambda <= 1e6))
+      return make_status(Error::invalid_argument, "9.7", 0, "height tolerance must be 0..16 steps and lambda 0..1e6");
+    if (prm->unrounded && prm->height_tolerance >= 0.5 && prm->height_lambda > 0)
+      for (size_t i = 0; i < 3 * nv; ++i)
+        if (!(std::fabs(prm->unrounded[i] - static_cast<double>(q[i])) <= 1.0))
+          return make_status(Error::invalid_argument, "9.7", 0,
+                             "unrounded coordinate of vertex " + std::to_string(i / 3) +
+                                 " is not finite or more than a step from its quantized value");
   }
   const uint32_t qmax = (uint32_t{1} << frame.bits) - 1;
   for (size_t i = 0; i < 3 * nv; ++i)
@@ -147,12 +155,31 @@ Status encode_impl(const uint32_t* q, size_t nv, const uint32_t* tris, size_t nt
     write_irregular_triangles(mesh, irregular, true, irregular_payload);
     // §9.4 The height coding: the caller's, or the one giving the smallest section: every difference depth, then
     // linear prediction (§9.7) with the best of them for the self-overlapping patches.
+    // The encoder's freedom in the heights (PrmOptions::height_tolerance), in canonical vertex order.
+    std::vector<double> exact;
+    HeightFreedom freedom;
+    if (prm->unrounded && prm->height_tolerance >= 0.5 && prm->height_lambda > 0) {
+      exact.assign(cq.size(), 0.0);
+      for (uint32_t v = 0; v < mesh.num_vertices; ++v) {
+        const uint32_t in = plan.vertex_input[v];
+        if (in == UINT32_MAX) continue;
+        for (int k = 0; k < 3; ++k) exact[3 * size_t{v} + k] = prm->unrounded[3 * size_t{in} + k];
+      }
+      freedom.exact = &exact;
+      freedom.tolerance = prm->height_tolerance;
+      freedom.lambda = prm->height_lambda;
+    }
+    std::vector<uint32_t> coded_positions;
     auto attempt = [&](int d, int overlap) -> Status {
       std::vector<uint8_t> payload, k;
+      std::vector<uint32_t> chosen;
       PatchStats st;
+      const bool free = freedom.exact && d == kHeightDepthPredicted;
       PRM_TRY(write_patches(mesh, cq, frame.bits, prm->grid, h.bbox_min, h.bbox_max, tri_axis, d, overlap,
-                            prm->predict_every_patch, payload, k, &st));
+                            prm->predict_every_patch, payload, k, &st, free ? &freedom : nullptr,
+                            free ? &chosen : nullptr));
       if (depth_used < 0 || payload.size() < patch_payload.size()) {
+        coded_positions = std::move(chosen);
         patch_payload = std::move(payload);
         known = std::move(k);
         patch_stats = st;
@@ -169,7 +196,21 @@ Status encode_impl(const uint32_t* q, size_t nv, const uint32_t* tris, size_t nt
       for (int d = 0; d <= kMaxHeightDepth; ++d) PRM_TRY(attempt(d, 0));
       PRM_TRY(attempt(kHeightDepthPredicted, prm->overlap_depth >= 0 ? prm->overlap_depth : depth_used));
     }
+    if (!coded_positions.empty()) {
+      // The predictor table was fitted to the rounded heights; fitted again to the chosen ones, the same heights
+      // may cost less.
+      std::vector<uint8_t> payload, k;
+      PatchStats st;
+      PRM_TRY(write_patches(mesh, coded_positions, frame.bits, prm->grid, h.bbox_min, h.bbox_max, tri_axis,
+                            kHeightDepthPredicted, overlap_used, prm->predict_every_patch, payload, k, &st));
+      if (payload.size() < patch_payload.size()) {
+        patch_payload = std::move(payload);
+        known = std::move(k);
+        patch_stats = st;
+      }
+    }
     h.version_minor = kFormatMinorPredicted;  // §3.2 1.2: the valence context, whatever the height coding
+    if (!coded_positions.empty()) cq = std::move(coded_positions);  // the heights the patches section holds
     PRM_TRY(write_positions(mesh, cq, h.bbox_min, h.bbox_max, pos, &known));
   } else {
     PRM_TRY(write_positions(mesh, cq, h.bbox_min, h.bbox_max, pos));

@@ -300,16 +300,22 @@ inline bool lp_neighbour_mean(const LpNeighbours& nb, uint32_t l, const std::vec
   return true;
 }
 
+// The encoder's choice of the height it codes: the given one (lossless).
+struct LpKeepHeight {
+  int64_t operator()(uint32_t, int64_t, int64_t given, const SignedIntModel&) const { return given; }
+};
+
 // §9.7.4 The heights of one patch in raster order. `placed[l]`: local vertex l was placed by an earlier patch, its
 // height h[l] is known and not coded. h: in, the heights (encoder) or the placed ones (decoder); out, all heights.
 // `value(model, max_class, truth, out)` codes one signed integer. Returns false when a decoded height leaves
 // [lo, hi] (§9.7.4: bad_position). `res`, `coded`: scratch per local vertex. `nb` (optional): the mesh around the
-// patch, for the vertices without a tap set.
-template <typename Value>
+// patch, for the vertices without a tap set. `choose(l, pred, h[l], model)` (encoder only): the height the encoder
+// codes for l once its prediction and residual model are known (lossless: h[l]).
+template <typename Value, typename Choose = LpKeepHeight>
 bool code_lp_heights(const Level& level, const LpRaster& raster, const LpTable& table, LpModels& m, int bits,
                      int64_t lo, int64_t hi, const std::vector<uint8_t>& placed, std::vector<int64_t>& h,
                      std::vector<int64_t>& res, std::vector<uint8_t>& coded, Value& value,
-                     const LpNeighbours* nb = nullptr) {
+                     const LpNeighbours* nb = nullptr, const Choose& choose = Choose{}) {
   const uint32_t n = level.size();
   res.assign(n, 0);
   coded.assign(n, 0);
@@ -344,7 +350,7 @@ bool code_lp_heights(const Level& level, const LpRaster& raster, const LpTable& 
     }
     const int group = s == kLpNoSet ? kLpGroups - 1 : lp_group(table.taps[s]);
     int64_t r;
-    if (!value(m.residual[group][activity], bits, h[l] - pred, r)) return false;
+    if (!value(m.residual[group][activity], bits, choose(l, pred, h[l], m.residual[group][activity]) - pred, r)) return false;
     const int64_t v = pred + r;
     if (v < lo || v > hi) return false;
     h[l] = v;

@@ -1,5 +1,7 @@
 // §7.1 The encoder's regularity check and §8-§9 the patches section, encoder side (patch headers, heights by
 // recursive difference patches). The decoder side is patch_decode.cpp; the shared steps are in patch_shared.h.
+#include <algorithm>
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <string>
@@ -71,7 +73,8 @@ void classify_triangles(const ClosedMesh& mesh, const std::vector<uint32_t>& cq,
 Status write_patches(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, int bits, int64_t grid,
                      const std::array<uint32_t, 3>& box_lo, const std::array<uint32_t, 3>& box_hi,
                      const std::vector<int8_t>& tri_axis, int depth, int overlap_depth, bool predict_every_patch,
-                     std::vector<uint8_t>& payload, std::vector<uint8_t>& known, PatchStats* stats) {
+                     std::vector<uint8_t>& payload, std::vector<uint8_t>& known, PatchStats* stats,
+                     const HeightFreedom* freedom, std::vector<uint32_t>* chosen) {
   const uint32_t nt = mesh.num_triangles();
   std::vector<uint8_t> cls = dummy_triangles(mesh);
   for (uint32_t t = 0; t < nt; ++t)
@@ -98,6 +101,20 @@ Status write_patches(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, in
     rc.encode_direct(truth, n);
     return truth;
   };
+  // The positions as coded so far: cq, with the heights the encoder chose when it has freedom.
+  const bool free_heights = freedom && freedom->exact && freedom->tolerance >= 0.5 && freedom->lambda > 0;
+  std::vector<uint32_t> cw_copy;
+  if (free_heights) cw_copy = cq;
+  const std::vector<uint32_t>& cw = free_heights ? cw_copy : cq;
+  // A vertex in regular triangles of two axis pairs keeps its coordinates: its height for one is a lattice
+  // coordinate for the other (§8.3 checks it).
+  std::vector<uint8_t> pairs_of;
+  if (free_heights) {
+    pairs_of.assign(mesh.num_vertices, 0);
+    for (uint32_t t = 0; t < mesh.num_triangles(); ++t)
+      if (tri_axis[t] >= 0)
+        for (int k = 0; k < 3; ++k) pairs_of[mesh.corner_vertex[3 * t + k]] |= static_cast<uint8_t>(1u << (tri_axis[t] / 2));
+  }
   std::vector<uint32_t> local(mesh.num_vertices, UINT32_MAX), global, queue;
   Level level;
   std::vector<std::vector<int64_t>> f;
@@ -128,7 +145,7 @@ Status write_patches(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, in
         return make_status(Error::internal, "8.3", 0, "patch " + std::to_string(p) + " propagates off its lattice");
     }
     h.resize(level.size());
-    for (uint32_t l = 0; l < level.size(); ++l) h[l] = cq[3 * size_t{global[l]} + static_cast<size_t>(pair)];
+    for (uint32_t l = 0; l < level.size(); ++l) h[l] = cw[3 * size_t{global[l]} + static_cast<size_t>(pair)];
     return ok_status();
   };
   auto release = [&] {
@@ -137,7 +154,7 @@ Status write_patches(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, in
   known.assign(mesh.num_vertices, 0);
   // §9.7.4 For the vertices without a tap set; only linear-prediction streams need it (Vertex_Corner is O(T)).
   std::optional<LpNeighbours> nb;
-  if (predicted) nb.emplace(mesh, known, cq.data(), local, global);
+  if (predicted) nb.emplace(mesh, known, cw.data(), local, global);
   // §9.7.2 The predictor table, fitted to the heights the patches will code (same placement order as below).
   LpTable table;
   std::array<bool, kLpSets> fitted{};
@@ -181,8 +198,36 @@ Status write_patches(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, in
       for (uint32_t l = 0; l < level.size(); ++l) placed[l] = known[global[l]];
       const int64_t lo = box_lo[static_cast<size_t>(pair)], hi = box_hi[static_cast<size_t>(pair)];
       nb->height_axis = pair;
-      if (!code_lp_heights(level, raster, table, models->lp, bits, lo, hi, placed, h, res, scratch, value, &*nb))
-        return make_status(Error::internal, "9.7", 0, "height out of range in patch " + std::to_string(p));
+      bool in_range;
+      if (free_heights) {
+        // The window around the exact height, inside the box (a height on the box's face stays there: the box
+        // remains tight), always holding the rounded height; the choice minimises the squared distance to the exact
+        // height plus lambda times the residual's bits under the model's current state.
+        const double tol = freedom->tolerance;
+        const double lambda = freedom->lambda;
+        auto choose = [&](uint32_t l, int64_t pred, int64_t given, const SignedIntModel& model) -> int64_t {
+          if (given <= lo || given >= hi || pairs_of[global[l]] != 1u << pair) return given;
+          const double x = (*freedom->exact)[3 * size_t{global[l]} + static_cast<size_t>(pair)];
+          const int64_t a = std::min(given, std::max(lo + 1, static_cast<int64_t>(std::ceil(x - tol))));
+          const int64_t b = std::max(given, std::min(hi - 1, static_cast<int64_t>(std::floor(x + tol))));
+          int64_t best = given;
+          double best_cost = 1e300;
+          for (int64_t q = a; q <= b; ++q) {
+            const double d = static_cast<double>(q) - x;
+            const double cost = d * d + lambda * signed_cost_bits(model, q - pred);
+            if (cost < best_cost) best_cost = cost, best = q;
+          }
+          return best;
+        };
+        in_range = code_lp_heights(level, raster, table, models->lp, bits, lo, hi, placed, h, res, scratch, value,
+                                   &*nb, choose);
+        for (uint32_t l = 0; l < level.size(); ++l)
+          cw_copy[3 * size_t{global[l]} + static_cast<size_t>(pair)] = static_cast<uint32_t>(h[l]);
+      } else {
+        in_range = code_lp_heights(level, raster, table, models->lp, bits, lo, hi, placed, h, res, scratch, value,
+                                   &*nb);
+      }
+      if (!in_range) return make_status(Error::internal, "9.7", 0, "height out of range in patch " + std::to_string(p));
       ++predicted_patches;
     } else {
       // §9 Heights by difference patches.
@@ -200,6 +245,7 @@ Status write_patches(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, in
     }
   }
   payload = rc.finish();
+  if (chosen) *chosen = cw;
   if (stats) {
     stats->patches = static_cast<uint32_t>(ps.size());
     stats->patch_vertices = patch_vertices;

@@ -6,6 +6,7 @@
 // the e low bits of |v| below its leading one: the highest one modelled (mant[e]), the others direct.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 
 #include "adaptive_model.h"
@@ -52,6 +53,24 @@ inline void encode_signed(RangeEncoder& rc, SignedIntModel& m, int64_t v) {
       rc.encode_direct(static_cast<uint32_t>((mag >> (rest - done)) & ((1u << done) - 1)), done);
     }
   }
+}
+
+// The encoder's estimate of what encode_signed(v) costs now, in bits (-log2 of each modelled decision's probability,
+// one bit per direct bit); the models are not changed.
+inline double signed_cost_bits(const SignedIntModel& m, int64_t v) {
+  auto bit = [](const BitModel& b, int one) {
+    const double p0 = static_cast<double>(b.p) / kProbOne;
+    return -std::log2(one ? 1.0 - p0 : p0);
+  };
+  double bits = bit(m.zero, v == 0);
+  if (v == 0) return bits;
+  bits += bit(m.sign, v < 0);
+  const uint64_t mag = static_cast<uint64_t>(v < 0 ? -v : v);
+  const int e = int_class(mag);
+  for (int i = 0; i < e; ++i) bits += bit(m.cls[i], 1);
+  if (e < kMaxClass) bits += bit(m.cls[e], 0);
+  if (e > 0) bits += bit(m.mant[e], static_cast<int>((mag >> (e - 1)) & 1)) + (e - 1);
+  return bits;
 }
 
 // Returns false (and leaves v = 0) when the class exceeds max_class: the caller's bound on the magnitude.

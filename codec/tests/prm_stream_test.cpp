@@ -161,6 +161,91 @@ TEST(PrmStream, LinearPredictionWinsOnASmoothPatch) {
   expect_round_trip(m, enc.value, rep);
 }
 
+// PrmOptions::height_lambda: the encoder may code, for the heights of linear-prediction patches, another integer
+// than the rounded one, within the tolerance of the unrounded value; everything else decodes exactly, the stream is
+// an ordinary 1.2 one, and smaller than the lossless one.
+TEST(PrmStream, HeightFreedomStaysWithinTheTolerance) {
+  const QMesh m = pillow(40, 0);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> offset(-0.49, 0.49);
+  std::vector<double> unrounded(m.q.size());
+  for (size_t i = 0; i < m.q.size(); ++i) unrounded[i] = static_cast<double>(m.q[i]) + offset(rng);
+  PrmOptions lossless;
+  lossless.grid = 8;
+  const auto base = encode_prm(m.q.data(), m.nv(), m.tris.data(), m.nt(), unit_frame(), lossless);
+  ASSERT_TRUE(base.ok());
+  for (double lambda : {0.25, 1.0, 4.0}) {
+    PrmOptions o = lossless;
+    o.height_tolerance = 1.5;
+    o.height_lambda = lambda;
+    o.unrounded = unrounded.data();
+    EncodeReport rep;
+    const auto enc = encode_prm(m.q.data(), m.nv(), m.tris.data(), m.nt(), unit_frame(), o, &rep);
+    ASSERT_TRUE(enc.ok()) << enc.status.message;
+    EXPECT_EQ(rep.height_depth, 7);
+    const auto dec = decode(enc.value.data(), enc.value.size());
+    ASSERT_TRUE(dec.ok()) << dec.status.message;
+    const DecodedMesh& d = dec.value;
+    ASSERT_EQ(d.num_vertices(), m.nv());
+    size_t moved = 0;
+    for (size_t k = 0; k < d.num_vertices(); ++k) {
+      const size_t in = rep.vertex_order[k];
+      int differing = 0;
+      for (int a = 0; a < 3; ++a) {
+        const uint32_t got = d.quantized[3 * k + a];
+        EXPECT_LE(std::fabs(static_cast<double>(got) - unrounded[3 * in + a]), 1.5) << k;
+        differing += got != m.q[3 * in + a];
+        // The pillow's patches face +-z: x and y are lattice coordinates and never move.
+        if (a < 2) EXPECT_EQ(got, m.q[3 * in + a]) << k;
+      }
+      EXPECT_LE(differing, 1);
+      moved += differing;
+    }
+    EXPECT_GT(moved, 0u) << lambda;
+    EXPECT_LT(enc.value.size(), base.value.size()) << lambda;
+    std::printf("lambda %.2f: %zu bytes (lossless %zu), %zu heights moved\n", lambda, enc.value.size(),
+                base.value.size(), moved);
+    // The decoded mesh is a PRM like any other: encoding it losslessly round trips.
+    QMesh again = m;
+    for (size_t k = 0; k < d.num_vertices(); ++k)
+      for (int a = 0; a < 3; ++a) again.q[3 * size_t{rep.vertex_order[k]} + a] = d.quantized[3 * k + a];
+    EncodeReport rep2;
+    const auto enc2 = encode_prm(again.q.data(), again.nv(), again.tris.data(), again.nt(), unit_frame(), lossless, &rep2);
+    ASSERT_TRUE(enc2.ok());
+    expect_round_trip(again, enc2.value, rep2);
+  }
+  // Without unrounded values, or with lambda 0, the encoder is lossless.
+  PrmOptions o = lossless;
+  o.height_tolerance = 1.5;
+  o.height_lambda = 1;
+  const auto no_values = encode_prm(m.q.data(), m.nv(), m.tris.data(), m.nt(), unit_frame(), o);
+  ASSERT_TRUE(no_values.ok());
+  EXPECT_EQ(no_values.value, base.value);
+  o.unrounded = unrounded.data();
+  o.height_lambda = 0;
+  const auto zero = encode_prm(m.q.data(), m.nv(), m.tris.data(), m.nt(), unit_frame(), o);
+  ASSERT_TRUE(zero.ok());
+  EXPECT_EQ(zero.value, base.value);
+  // Refused: a tolerance or lambda out of range, an unrounded value that is NaN or not near its quantized value.
+  for (auto [tolerance, lambda] : {std::pair{17.0, 1.0}, std::pair{-1.0, 1.0}, std::pair{1.5, -1.0},
+                                   std::pair{1.5, std::nan("")}}) {
+    PrmOptions bad = o;
+    bad.height_tolerance = tolerance;
+    bad.height_lambda = lambda;
+    EXPECT_EQ(encode_prm(m.q.data(), m.nv(), m.tris.data(), m.nt(), unit_frame(), bad).status.error,
+              Error::invalid_argument);
+  }
+  for (double wrong : {std::nan(""), 2.0}) {
+    std::vector<double> u = unrounded;
+    u[3 * 17 + 2] = static_cast<double>(m.q[3 * 17 + 2]) + wrong;
+    PrmOptions bad = o;
+    bad.height_lambda = 1;
+    bad.unrounded = u.data();
+    EXPECT_EQ(encode_prm(m.q.data(), m.nv(), m.tris.data(), m.nt(), unit_frame(), bad).status.error,
+              Error::invalid_argument);
+  }
+}
+
 void fix_crc(std::vector<uint8_t>& s) {
   const uint32_t c = crc32(s.data(), s.size() - 4);
   for (int i = 0; i < 4; ++i) s[s.size() - 4 + i] = static_cast<uint8_t>(c >> (8 * i));

@@ -1,5 +1,6 @@
 #include "prm/pipeline/codec_bridge.h"
 
+#include <algorithm>
 #include <string>
 
 #include "prm/error.h"
@@ -41,6 +42,18 @@ codec::Result<std::vector<uint8_t>> encode_prm_mesh(const remesh::PrmMesh& prm, 
   const std::vector<uint32_t> tris = flat_triangles(m);
   codec::PrmOptions options = given;
   options.grid = prm.lattice.A;
+  std::vector<double> unrounded;
+  if (options.height_tolerance >= 0.5 && options.height_lambda > 0 && !options.unrounded) {
+    unrounded.resize(q.size());
+    for (size_t v = 0; v < m.positions.size(); ++v)
+      for (int a = 0; a < 3; ++a)
+      {
+        // As exact as the rounding was (a coordinate the frame clamped stays on its step).
+        const double x = prm.frame.to_quant(m.positions[v][a], a), r = q[3 * v + static_cast<size_t>(a)];
+        unrounded[3 * v + static_cast<size_t>(a)] = std::clamp(x, r - 0.5, r + 0.5);
+      }
+    options.unrounded = unrounded.data();
+  }
   return codec::encode_prm(q.data(), m.positions.size(), tris.data(), m.triangles.size(), codec_frame(prm.frame),
                            options, report);
 }

@@ -1,6 +1,7 @@
 #include "prm/pipeline/pack.h"
 
 #include <chrono>
+#include <iterator>
 
 #include "prm/error.h"
 #include "prm/mesh_validate.h"
@@ -32,9 +33,30 @@ PackResult pack_at(const Mesh& source, const MetroReference& reference, const Pa
   ro.initial_grid_size = initial_grid;
   ro.target_error = kQuantizationMargin * options.target_error;
   // The search measures what the decoder will output: the candidate quantized to the stream's frame (its lattice
-  // vertices are exact already; the heights and the other vertices round to the nearest step).
+  // vertices are exact already; the heights and the other vertices round to the nearest step), or, when the
+  // encoder may choose the heights, the candidate encoded and decoded.
   const remesh::QuantFrame frame = remesh::QuantFrame::of_mesh(source, bits);
-  auto error = [&](const Mesh& candidate) {
+  codec::PrmOptions po;
+  if (options.height_lambda > 0) {
+    po.height_tolerance = kHeightTolerance;
+    po.height_lambda = options.height_lambda;
+  }
+  // The stream of a candidate with options o, and the error of its decoded mesh.
+  auto encode_and_measure = [&](const remesh::PrmMesh& prm, const codec::PrmOptions& o, codec::EncodeReport* report,
+                                std::vector<uint8_t>* stream) {
+    auto encoded = encode_prm_mesh(prm, report, o);
+    if (!encoded.ok())
+      throw InputError("the piecewise regular mesh could not be encoded (a remesher or codec bug): " +
+                       encoded.status.message + " (spec §" + encoded.status.spec_section + ")");
+    auto decoded = codec::decode(encoded.value.data(), encoded.value.size());
+    if (!decoded.ok()) throw InputError("the encoder's stream does not decode (a codec bug): " + decoded.status.message);
+    const DistanceReport d = reference.compare(to_mesh(decoded.value));
+    if (stream) *stream = std::move(encoded.value);
+    return remesh::ErrorEstimate{d.rel(d.rms), d.rel(d.max)};
+  };
+  auto error = [&](const remesh::PrmMesh& prm) {
+    if (po.height_lambda > 0) return encode_and_measure(prm, po, nullptr, nullptr);
+    const Mesh& candidate = prm.mesh;
     Mesh q;
     q.triangles = candidate.triangles;
     q.positions.resize(candidate.positions.size());
@@ -50,12 +72,40 @@ PackResult pack_at(const Mesh& source, const MetroReference& reference, const Pa
   out.bits = bits;
 
   t0 = std::chrono::steady_clock::now();
-  auto encoded = encode_prm_mesh(out.remesh.prm, &out.report);
+  auto encoded = encode_prm_mesh(out.remesh.prm, &out.report, po);
   out.seconds_encode = seconds_since(t0);
   if (!encoded.ok())
     throw InputError("the piecewise regular mesh could not be encoded (a remesher or codec bug): " +
                      encoded.status.message + " (spec §" + encoded.status.spec_section + ")");
   out.stream = std::move(encoded.value);
+  out.codec_options = po;
+  // The error left below the target buys smaller residuals: the largest lambda that still meets it.
+  if (options.optimize_heights && options.height_lambda <= 0 && options.target_error > 0) {
+    const auto t1 = std::chrono::steady_clock::now();
+    // The error grows with lambda: bisection for the last one that meets the target.
+    int lo = -1, hi = static_cast<int>(std::size(kHeightLambdas));  // lo meets (-1: rounding), hi does not
+    while (hi - lo > 1) {
+      const int mid = (lo + hi) / 2;
+      codec::PrmOptions o;
+      o.height_tolerance = kHeightTolerance;
+      o.height_lambda = kHeightLambdas[mid];
+      codec::EncodeReport report;
+      std::vector<uint8_t> stream;
+      const remesh::ErrorEstimate e = encode_and_measure(out.remesh.prm, o, &report, &stream);
+      if (e.rms > ro.target_error) {
+        hi = mid;
+        continue;
+      }
+      lo = mid;
+      if (stream.size() < out.stream.size()) {
+        out.stream = std::move(stream);
+        out.report = report;
+        out.remesh.error = e;
+        out.codec_options = o;
+      }
+    }
+    out.seconds_remesh += seconds_since(t1);  // part of the search
+  }
   return out;
 }
 

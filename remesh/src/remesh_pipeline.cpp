@@ -80,7 +80,7 @@ RemeshResult remesh(const Mesh& input, const RemeshOptions& options, const Error
     step.grid_size = static_cast<double>(grid) * ro.frame.step;
     step.vertices = prm.stats.vertices;
     step.regular_share = prm.stats.faces ? static_cast<double>(prm.stats.regular_faces) / prm.stats.faces : 0;
-    if (error) step.error = error(prm.mesh);
+    if (error) step.error = error(prm);
     step.seconds = seconds_since(ts);
     result.search.push_back(step);
     return prm;

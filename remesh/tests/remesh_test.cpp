@@ -137,8 +137,8 @@ TEST(Remesh, TargetErrorOnPaperModels) {
     const MetroReference reference(input);
     RemeshOptions o;
     o.target_error = 2e-4;
-    const RemeshResult r = remesh(input, o, [&](const Mesh& c) {
-      const DistanceReport d = reference.compare(c);
+    const RemeshResult r = remesh(input, o, [&](const PrmMesh& c) {
+      const DistanceReport d = reference.compare(c.mesh);
       return ErrorEstimate{d.rel(d.rms), d.rel(d.max)};
     });
     const double regular = static_cast<double>(r.prm.stats.regular_faces) / static_cast<double>(r.prm.stats.faces);

@@ -17,10 +17,10 @@ void add_pack_command(CLI::App& root) {
       "pack", "Remesh a mesh into a piecewise regular mesh and compress it into a .prm stream (repair + remesh + encode)");
   struct Options {
     std::string input, output, keep_prm;
-    double target = 0, grid = 0, grid_fraction = 0, tau = 0.2;
+    double target = 0, grid = 0, grid_fraction = 0, tau = 0.2, lambda = 0;
     int bits = 0;
     size_t samples = 0;
-    bool json = false, no_fit = false;
+    bool json = false, no_fit = false, round_heights = false;
   };
   auto opt = std::make_shared<Options>();
   cmd->add_option("input", opt->input, "Mesh file (OBJ/PLY/OFF/STL/glTF); holes are closed first")
@@ -45,6 +45,13 @@ void add_pack_command(CLI::App& root) {
   cmd->add_option("--keep-prm", opt->keep_prm, "Also write the piecewise regular mesh (PLY with lattice labels)");
   cmd->add_flag("--interpolate-heights", opt->no_fit,
                 "Keep the lattice vertices on the input surface (no least-squares heights; for comparison)");
+  cmd->add_option("--height-lambda", opt->lambda,
+                  "Rate-distortion weight of the coded heights (squared quantization steps per bit; each height may "
+                  "move up to 1.5 steps). Default: with --target-error, the largest of 1, 0.5, 0.25, 0.12, 0.06 that "
+                  "still meets the target; otherwise 0 (heights rounded)")
+      ->check(CLI::Range(0.0, 100.0));
+  cmd->add_flag("--round-heights", opt->round_heights,
+                "Round every height to the nearest step (no rate-distortion choice; for comparison)");
   cmd->add_flag("--json", opt->json, "Print the report as one JSON object");
   cmd->callback([opt] {
     if (opt->grid <= 0 && opt->grid_fraction <= 0 && opt->target <= 0)
@@ -58,6 +65,8 @@ void add_pack_command(CLI::App& root) {
     po.bits = opt->bits;
     po.metro_samples = opt->samples;
     po.fit_heights = !opt->no_fit;
+    po.height_lambda = opt->lambda;
+    po.optimize_heights = !opt->round_heights;
     pipeline::PackResult r;
     try {
       r = pipeline::pack(input, po);
@@ -89,6 +98,7 @@ void add_pack_command(CLI::App& root) {
           {"bits_tried", r.bits_tried},
           {"regular_share", s.faces ? static_cast<double>(s.regular_faces) / s.faces : 0.0},
           {"regular_patches", rep.regular_patches},
+          {"height_lambda", r.codec_options.height_lambda},
           {"rms_error", r.remesh.error.rms},
           {"max_error", r.remesh.error.max},
           {"bytes",

@@ -60,8 +60,8 @@ void add_remesh_command(CLI::App& root) {
     MetroOptions mo;
     mo.samples = opt->samples;
     const MetroReference reference(input, mo);
-    auto error = [&](const Mesh& candidate) {
-      const DistanceReport d = reference.compare(candidate);
+    auto error = [&](const remesh::PrmMesh& candidate) {
+      const DistanceReport d = reference.compare(candidate.mesh);
       return remesh::ErrorEstimate{d.rel(d.rms), d.rel(d.max)};
     };
     remesh::RemeshResult res;

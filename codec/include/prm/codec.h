@@ -152,6 +152,16 @@ struct PrmOptions {
   // §9.7.4 Linear prediction for every patch, also the self-overlapping ones (the encoder otherwise codes a patch
   // with more than 1/64 of its vertices on shared lattice points by difference patches). For tests.
   bool predict_every_patch = false;
+  // Rate-distortion choice of the heights (encoder only; the stream is an ordinary one). With `unrounded` (3 per
+  // input vertex: the coordinates in quantization steps before rounding, q = round(unrounded)), a tolerance of at
+  // least 0.5 steps and lambda > 0, the height of each patch vertex coded by linear prediction (§9.7), unless it is
+  // on a face of the bounding box or in regular triangles of two axis pairs, may be any integer within
+  // `height_tolerance` of its unrounded value: the encoder codes the one minimising (height - unrounded)^2 +
+  // height_lambda * (estimated bits of its residual). The decoded mesh then differs from q in those heights only,
+  // by at most the tolerance. Defaults: lossless (decode gives q).
+  double height_tolerance = 0;
+  double height_lambda = 0;
+  const double* unrounded = nullptr;
 };
 
 // Encodes a PRM: the encoder checks which triangles are regular (§7.1: three lattice neighbours forming a grid

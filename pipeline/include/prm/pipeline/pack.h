@@ -31,7 +31,16 @@ struct PackOptions {
   size_t metro_samples = 0;  // per surface for the error (0: Metro's default, ten per face)
   bool parallel = true;
   bool fit_heights = true;   // least-squares heights (remesh::RemeshOptions::fit_heights)
+  // Rate-distortion choice of the heights (codec::PrmOptions::height_lambda, within kHeightTolerance steps of the
+  // remeshed heights). With a target error, the grid search rounds the heights; then the largest of kHeightLambdas
+  // whose decoded mesh still meets the target is used, found by bisection (the grid size moves in whole
+  // quantization steps, and the error it leaves below the target buys smaller residuals). height_lambda > 0: that
+  // one, also in the grid search.
+  bool optimize_heights = true;
+  double height_lambda = 0;
 };
+constexpr double kHeightTolerance = 1.5;
+constexpr double kHeightLambdas[] = {0.03, 0.05, 0.08, 0.12, 0.18, 0.25, 0.35, 0.5, 0.7, 1.0};  // increasing
 
 struct PackResult {
   std::vector<uint8_t> stream;
@@ -40,6 +49,7 @@ struct PackResult {
   RepairReport repair;
   bool repaired = false;        // the input had holes, pinches or degenerate faces
   int bits = 12;                // the stream's quantization
+  codec::PrmOptions codec_options;  // what the stream was encoded with (height_lambda; without `unrounded`)
   std::vector<std::pair<int, size_t>> bits_tried;  // (bits, stream bytes) of every bit depth the search tried
   Mesh repaired_input;          // what was remeshed when `repaired` (the input itself otherwise, not copied)
   double seconds_repair = 0, seconds_remesh = 0, seconds_encode = 0;

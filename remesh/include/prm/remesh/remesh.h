@@ -31,7 +31,8 @@ struct ErrorEstimate {
   double rms = 0;
   double max = 0;
 };
-using ErrorFunction = std::function<ErrorEstimate(const Mesh& candidate)>;
+// The candidate is the PRM of one grid size (its mesh, frame and lattice labels).
+using ErrorFunction = std::function<ErrorEstimate(const PrmMesh& candidate)>;
 
 struct SearchStep {
   int64_t grid = 0;   // quantization steps
