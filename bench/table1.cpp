@@ -138,8 +138,7 @@ Result measure(const std::string& name, const std::string& path, double target, 
   r.enc = std::min(pack.seconds_encode, best_time(
                                             [&] {
                                               prm::codec::EncodeReport rep;
-                                              (void)prm::pipeline::encode_prm_mesh(pack.remesh.prm, &rep,
-                                                                                   pack.codec_options);
+                                              (void)prm::pipeline::encode_prm_mesh(pack.remesh.prm, &rep);
                                             },
                                             std::max(1, rounds / 3)));
 

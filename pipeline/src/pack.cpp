@@ -106,6 +106,17 @@ PackResult pack_at(const Mesh& source, const MetroReference& reference, const Pa
     }
     out.seconds_remesh += seconds_since(t1);  // part of the search
   }
+  if (out.codec_options.height_lambda > 0) {
+    // The PRM of the result is the one the stream holds: its heights are the encoder's choice.
+    const auto decoded = codec::decode(out.stream.data(), out.stream.size());
+    if (!decoded.ok()) throw InputError("the encoder's stream does not decode (a codec bug): " + decoded.status.message);
+    const std::vector<uint32_t>& order = out.report.vertex_order;
+    Mesh& m = out.remesh.prm.mesh;
+    for (size_t k = 0; k < order.size(); ++k)
+      for (int a = 0; a < 3; ++a)
+        m.positions[order[k]][static_cast<size_t>(a)] =
+            out.remesh.prm.frame.to_real(decoded.value.quantized[3 * k + static_cast<size_t>(a)], a);
+  }
   return out;
 }
 

@@ -142,6 +142,50 @@ TEST(Pack, GridFromTargetError) {
   EXPECT_LE(d.rel(d.rms), 5e-4);
 }
 
+// PackOptions::optimize_heights (the default): the heights the encoder chooses still meet the target, the stream
+// is smaller than with rounded heights, the result's PRM is what the stream holds, and it differs from the rounded
+// PRM in heights only, each by at most kHeightTolerance steps.
+TEST(Pack, ChosenHeightsMeetTheTargetInASmallerStream) {
+  const prm::Mesh input = prm::read_mesh(std::string(PRM_SHARED_MESHES) + "/spot.obj");
+  PackOptions o;
+  o.target_error = 5e-4;
+  o.bits = 11;
+  o.optimize_heights = false;
+  const prm::pipeline::PackResult rounded = prm::pipeline::pack(input, o);
+  EXPECT_EQ(rounded.codec_options.height_lambda, 0.0);
+  o.optimize_heights = true;
+  const prm::pipeline::PackResult r = prm::pipeline::pack(input, o);
+  EXPECT_GT(r.codec_options.height_lambda, 0.0);
+  EXPECT_LT(r.stream.size(), rounded.stream.size());
+  std::printf("spot at 5e-4, 11 bits: rounded heights %zu bytes (RMS %.4e), lambda %.2f: %zu bytes (RMS %.4e)\n",
+              rounded.stream.size(), rounded.remesh.error.rms, r.codec_options.height_lambda, r.stream.size(),
+              r.remesh.error.rms);
+  expect_exact_round_trip(r);
+  const auto decoded = prm::codec::decode(r.stream.data(), r.stream.size());
+  ASSERT_TRUE(decoded.ok());
+  const prm::DistanceReport d = prm::metro_distance(input, prm::pipeline::to_mesh(decoded.value));
+  EXPECT_LE(d.rel(d.rms), 5e-4);
+  // Same remesh, same lattice; only heights moved.
+  const prm::remesh::PrmMesh &a = rounded.remesh.prm, &b = r.remesh.prm;
+  ASSERT_EQ(a.lattice.A, b.lattice.A);
+  ASSERT_EQ(a.mesh.positions.size(), b.mesh.positions.size());
+  size_t moved = 0;
+  for (size_t v = 0; v < a.mesh.positions.size(); ++v) {
+    int differing = 0;
+    for (int k = 0; k < 3; ++k) {
+      const int32_t qa = a.frame.quantize(a.mesh.positions[v][k], k), qb = b.frame.quantize(b.mesh.positions[v][k], k);
+      EXPECT_LE(std::abs(qa - qb), 2) << v;  // |chosen - unrounded| <= 1.5 and |rounded - unrounded| <= 0.5
+      // The unrounded value (a vertex outside the frame is clamped to its face and counts as on it).
+      const double x = std::clamp(a.frame.to_quant(a.mesh.positions[v][k], k), qa - 0.5, qa + 0.5);
+      EXPECT_LE(std::fabs(qb - x), prm::pipeline::kHeightTolerance + 1e-9) << v;
+      differing += qa != qb;
+    }
+    EXPECT_LE(differing, 1) << v;
+    moved += differing;
+  }
+  EXPECT_GT(moved, 0u);
+}
+
 TEST(Pack, PrmFileIsRecognisedByEncodeAnyMesh) {
   const prm::Mesh input = prm::read_mesh(std::string(PRM_SHARED_MESHES) + "/spot.obj");
   PackOptions o;

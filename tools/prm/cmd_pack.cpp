@@ -124,6 +124,8 @@ void add_pack_command(CLI::App& root) {
         for (const auto& [b, bytes] : r.bits_tried) std::printf(" %d: %zu B", b, bytes);
         std::printf(")");
       }
+      if (r.codec_options.height_lambda > 0)
+        std::printf(", heights chosen by rate and distortion (lambda %.2f)", r.codec_options.height_lambda);
       std::printf("\n");
       std::printf("  stream: connectivity %zu B (%.2f bpv), irregular triangles %zu B (%.2f bpv), geometry %zu B "
                   "(%.2f bpv), header %zu B\n",

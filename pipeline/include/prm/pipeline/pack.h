@@ -45,7 +45,8 @@ constexpr double kHeightLambdas[] = {0.03, 0.05, 0.08, 0.12, 0.18, 0.25, 0.35, 0
 struct PackResult {
   std::vector<uint8_t> stream;
   codec::EncodeReport report;
-  remesh::RemeshResult remesh;  // the PRM, the error of the remeshed mesh, the grid search
+  remesh::RemeshResult remesh;  // the PRM (with the heights the stream holds), the error of the decoded mesh, the
+                                // grid search
   RepairReport repair;
   bool repaired = false;        // the input had holes, pinches or degenerate faces
   int bits = 12;                // the stream's quantization
