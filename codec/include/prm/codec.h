@@ -152,7 +152,7 @@ struct PrmOptions {
   // §9.7.4 Linear prediction for every patch, also the self-overlapping ones (the encoder otherwise codes a patch
   // with more than 1/64 of its vertices on shared lattice points by difference patches). For tests.
   bool predict_every_patch = false;
-  // Rate-distortion choice of the heights (encoder only; the stream is an ordinary one). With `unrounded` (3 per
+  // Rate-distortion choice of the heights (spec Appendix B; encoder only, the stream is an ordinary one). With `unrounded` (3 per
   // input vertex: the coordinates in quantization steps before rounding, q = round(unrounded)), a tolerance of at
   // least 0.5 steps and lambda > 0, the height of each patch vertex coded by linear prediction (§9.7), unless it is
   // on a face of the bounding box or in regular triangles of two axis pairs, may be any integer within
