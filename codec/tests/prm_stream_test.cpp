@@ -196,7 +196,9 @@ TEST(PrmStream, HeightFreedomStaysWithinTheTolerance) {
         EXPECT_LE(std::fabs(static_cast<double>(got) - unrounded[3 * in + a]), 1.5) << k;
         differing += got != m.q[3 * in + a];
         // The pillow's patches face +-z: x and y are lattice coordinates and never move.
-        if (a < 2) EXPECT_EQ(got, m.q[3 * in + a]) << k;
+        if (a < 2) {
+          EXPECT_EQ(got, m.q[3 * in + a]) << k;
+        }
       }
       EXPECT_LE(differing, 1);
       moved += differing;
