@@ -245,7 +245,7 @@ void print_csv(std::FILE* f, const std::vector<Result>& rows) {
                "geom_bytes,total_bytes,bpv,total_over_s_o,total_over_s_r,encode_s,decode_s,draco_decode_s,remesh_s,"
                "failure\n");
   for (const Result& r : rows)
-    std::fprintf(f, "ours,%s,%g,%zu,%zu,%.9g,%.9g,%d,%.6f,%.6g,%.6g,%zu,%zu,%zu,%.6g,%d,%zu,%zu,%zu,%zu,%zu,%.4f,%.4f,%.4f,%.6g,%.6g,%.6g,%.4g,%s\n",
+    std::fprintf(f, "ours,\"%s\",%g,%zu,%zu,%.9g,%.9g,%d,%.6f,%.6g,%.6g,%zu,%zu,%zu,%.6g,%d,%zu,%zu,%zu,%zu,%zu,%.4f,%.4f,%.4f,%.6g,%.6g,%.6g,%.4g,%s\n",
                  r.mesh.c_str(), r.target, r.n_o, r.n_r, r.g, r.g_rel, r.bits, r.regular_share, r.e, r.e_max, r.s_o, r.s_r,
                  r.s_r12, r.e_r, r.bits_re, r.s_re,
                  r.conn, r.irreg, r.geom, r.total, r.n_r ? 8.0 * static_cast<double>(r.total) / static_cast<double>(r.n_r) : 0.0,
@@ -253,7 +253,7 @@ void print_csv(std::FILE* f, const std::vector<Result>& rows) {
                  r.s_r ? static_cast<double>(r.total) / static_cast<double>(r.s_r) : 0.0, r.enc, r.dec, r.draco_dec,
                  r.remesh, r.failure.c_str());
   for (const PaperRow& p : kPaper)
-    std::fprintf(f, "paper,%s,%g,%.0f,%.0f,%g,,12,,%g,,%.0f,%.0f,,,,,%.0f,%.0f,%.0f,%.0f,%.4f,%.4f,%.4f,,%g,,,\n", p.model,
+    std::fprintf(f, "paper,\"%s\",%g,%.0f,%.0f,%g,,12,,%g,,%.0f,%.0f,,,,,%.0f,%.0f,%.0f,%.0f,%.4f,%.4f,%.4f,,%g,,,\n", p.model,
                  p.e4 * 1e-4, p.n_o, p.n_r, p.g, p.e4 * 1e-4, p.s_o * 1024, p.s_r * 1024, p.conn * 1024,
                  p.irreg * 1024, p.geom * 1024, p.total * 1024, 8192.0 * p.total / p.n_r, p.total / p.s_o,
                  p.total / p.s_r, p.t);
