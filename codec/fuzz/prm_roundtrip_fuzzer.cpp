@@ -1,7 +1,10 @@
 // libFuzzer target: the PRM sections (§7-§9) round trip on lattice meshes built from the input: a closed pillow of
 // two hexagonal patches (test_meshes.h) whose size, grid, heights and off-lattice vertices come from the bytes.
 // Every one must encode (with at least one regular triangle), decode to itself exactly at every height depth and
-// with linear prediction (§9.7), and decode identically from the encoder's chosen coding.
+// with linear prediction (§9.7), and decode identically from the encoder's chosen coding; with the encoder's choice
+// of heights (spec Appendix B), unrounded values and lambda from the bytes, it must decode to a mesh within the
+// tolerance of them that differs from the input in one coordinate per vertex at most.
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <vector>
@@ -57,6 +60,31 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     for (size_t k = 0; k < m.nv(); ++k)
       for (int a = 0; a < 3; ++a)
         if (dec.value.quantized[3 * k + a] != m.q[3 * size_t{rep.vertex_order[k]} + a]) __builtin_trap();
+  }
+  std::vector<double> unrounded(m.q.size());
+  for (size_t i = 0; i < m.q.size(); ++i)
+    unrounded[i] = static_cast<double>(m.q[i]) + (static_cast<double>(in.at(3 * i + 1)) - 127.5) / 256.0;
+  PrmOptions o;
+  o.grid = grid;
+  o.height_tolerance = 0.5 + static_cast<double>(data[2] >> 3) / 8.0;   // 0.5 .. 4.375 steps
+  o.height_lambda = std::ldexp(1.0, data[1] % 12 - 6);                   // 2^-6 .. 2^5
+  o.unrounded = unrounded.data();
+  EncodeReport rep;
+  const auto enc = encode_prm(m.q.data(), m.nv(), m.tris.data(), m.nt(), f, o, &rep);
+  if (!enc.ok()) __builtin_trap();
+  DecodeOptions opt;
+  opt.positions = PositionOutput::quantized_only;
+  const auto dec = decode(enc.value.data(), enc.value.size(), opt);
+  if (!dec.ok() || dec.value.num_vertices() != m.nv() || dec.value.num_triangles() != m.nt()) __builtin_trap();
+  for (size_t k = 0; k < m.nv(); ++k) {
+    int differing = 0;
+    for (int a = 0; a < 3; ++a) {
+      const size_t i = 3 * size_t{rep.vertex_order[k]} + a;
+      const uint32_t got = dec.value.quantized[3 * k + a];
+      differing += got != m.q[i];
+      if (std::fabs(static_cast<double>(got) - unrounded[i]) > o.height_tolerance + 1e-9) __builtin_trap();
+    }
+    if (differing > 1) __builtin_trap();
   }
   return 0;
 }
