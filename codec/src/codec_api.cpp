@@ -153,9 +153,7 @@ Status encode_impl(const uint32_t* q, size_t nv, const uint32_t* tris, size_t nt
     for (uint32_t t = 0; t < mesh.num_triangles(); ++t) irregular[t] = dummy[t] != kDummyTriangle && tri_axis[t] < 0;
     h.flags |= kFlagLersValence;  // §7.3 the valence context
     write_irregular_triangles(mesh, irregular, true, irregular_payload);
-    // §9.4 The height coding: the caller's, or the one giving the smallest section: every difference depth, then
-    // linear prediction (§9.7) with the best of them for the self-overlapping patches.
-    // The encoder's freedom in the heights (PrmOptions::height_tolerance), in canonical vertex order.
+    // The encoder's freedom in the heights (spec Appendix B, PrmOptions::height_lambda), in canonical vertex order.
     std::vector<double> exact;
     HeightFreedom freedom;
     if (prm->unrounded && prm->height_tolerance >= 0.5 && prm->height_lambda > 0) {
@@ -170,6 +168,8 @@ Status encode_impl(const uint32_t* q, size_t nv, const uint32_t* tris, size_t nt
       freedom.lambda = prm->height_lambda;
     }
     std::vector<uint32_t> coded_positions;
+    // §9.4 The height coding: the caller's, or the one giving the smallest section: every difference depth, then
+    // linear prediction (§9.7) with the best of them for the self-overlapping patches.
     auto attempt = [&](int d, int overlap) -> Status {
       std::vector<uint8_t> payload, k;
       std::vector<uint32_t> chosen;

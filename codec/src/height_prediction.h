@@ -350,7 +350,8 @@ bool code_lp_heights(const Level& level, const LpRaster& raster, const LpTable& 
     }
     const int group = s == kLpNoSet ? kLpGroups - 1 : lp_group(table.taps[s]);
     int64_t r;
-    if (!value(m.residual[group][activity], bits, choose(l, pred, h[l], m.residual[group][activity]) - pred, r)) return false;
+    SignedIntModel& model = m.residual[group][activity];
+    if (!value(model, bits, choose(l, pred, h[l], model) - pred, r)) return false;
     const int64_t v = pred + r;
     if (v < lo || v > hi) return false;
     h[l] = v;

@@ -200,9 +200,9 @@ Status write_patches(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, in
       nb->height_axis = pair;
       bool in_range;
       if (free_heights) {
-        // Appendix B. The window around the exact height, inside the box (a height on the box's face stays there: the box
-        // remains tight), always holding the rounded height; the choice minimises the squared distance to the exact
-        // height plus lambda times the residual's bits under the model's current state.
+        // Spec Appendix B. The window around the exact height, inside the box (a height on the box's face stays
+        // there: the box remains tight), always holding the rounded height; the choice minimises the squared distance
+        // to the exact height plus lambda times the residual's bits under the model's current state.
         const double tol = freedom->tolerance;
         const double lambda = freedom->lambda;
         auto choose = [&](uint32_t l, int64_t pred, int64_t given, const SignedIntModel& model) -> int64_t {
