@@ -47,8 +47,8 @@ void add_pack_command(CLI::App& root) {
                 "Keep the lattice vertices on the input surface (no least-squares heights; for comparison)");
   cmd->add_option("--height-lambda", opt->lambda,
                   "Rate-distortion weight of the coded heights (squared quantization steps per bit; each height may "
-                  "move up to 1.5 steps). Default: with --target-error, the largest of 1, 0.5, 0.25, 0.12, 0.06 that "
-                  "still meets the target; otherwise 0 (heights rounded)")
+                  "move up to 1.5 steps; spec Appendix B). Default: with --target-error, the largest of ten values from "
+                  "0.03 to 1 that still meets the target (bisection); otherwise 0 (heights rounded)")
       ->check(CLI::Range(0.0, 100.0));
   cmd->add_flag("--round-heights", opt->round_heights,
                 "Round every height to the nearest step (no rate-distortion choice; for comparison)");
