@@ -19,11 +19,12 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 
 // One bit depth: repair (done by the caller), remesh, encode.
 PackResult pack_at(const Mesh& source, const MetroReference& reference, const PackOptions& options, int bits,
-                   double initial_grid) {
+                   double step_scale, double initial_grid) {
   PackResult out;
   auto t0 = std::chrono::steady_clock::now();
   remesh::RemeshOptions ro;
   ro.bits = bits;
+  ro.step_scale = step_scale;
   ro.reliefs.tau = options.tau;
   ro.reliefs.parallel = options.parallel;
   ro.parallel = options.parallel;
@@ -35,7 +36,7 @@ PackResult pack_at(const Mesh& source, const MetroReference& reference, const Pa
   // The search measures what the decoder will output: the candidate quantized to the stream's frame (its lattice
   // vertices are exact already; the heights and the other vertices round to the nearest step), or, when the
   // encoder may choose the heights, the candidate encoded and decoded.
-  const remesh::QuantFrame frame = remesh::QuantFrame::of_mesh(source, bits);
+  const remesh::QuantFrame frame = remesh::QuantFrame::of_mesh(source, bits, step_scale);
   codec::PrmOptions po;
   if (options.height_lambda > 0) {
     po.height_tolerance = kHeightTolerance;
@@ -70,6 +71,7 @@ PackResult pack_at(const Mesh& source, const MetroReference& reference, const Pa
   out.remesh = remesh::remesh(source, ro, error);
   out.seconds_remesh = seconds_since(t0);
   out.bits = bits;
+  out.step_scale = step_scale;
 
   t0 = std::chrono::steady_clock::now();
   auto encoded = encode_prm_mesh(out.remesh.prm, &out.report, po);
@@ -137,9 +139,10 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
   const MetroReference reference(source, mo);
 
   PackResult out;
+  const double fixed_scale = options.step_scale > 0 ? options.step_scale : 1.0;
   if (options.bits > 0 || options.target_error <= 0) {
-    out = pack_at(source, reference, options, options.bits > 0 ? options.bits : 12, 0);
-    out.bits_tried.push_back({out.bits, out.stream.size()});
+    out = pack_at(source, reference, options, options.bits > 0 ? options.bits : 12, fixed_scale, 0);
+    out.tried.push_back({out.bits, out.step_scale, out.stream.size()});
   } else {
     // The bit depth is part of the search: fewer bits make every height cheaper and add quantization error, which a
     // finer grid must buy back. From 12 bits down while the stream shrinks (up from 12 while the target is out of
@@ -147,27 +150,36 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
     double grid = 0, seconds = 0;
     bool have = false;
     enum class Outcome { unreachable, smaller, larger };
-    auto attempt = [&](int bits) {
+    auto attempt = [&](int bits, double scale) {
       PackResult r;
       try {
-        r = pack_at(source, reference, options, bits, grid);
+        r = pack_at(source, reference, options, bits, scale, grid);
       } catch (const remesh::TargetNotReached&) {
         return Outcome::unreachable;
       }
       seconds += r.seconds_remesh + r.seconds_encode;
-      out.bits_tried.push_back({bits, r.stream.size()});
+      out.tried.push_back({bits, scale, r.stream.size()});
       grid = static_cast<double>(r.remesh.prm.lattice.A) * r.remesh.prm.frame.step;
       if (have && r.stream.size() >= out.stream.size()) return Outcome::larger;
-      auto tried = std::move(out.bits_tried);
+      auto tried = std::move(out.tried);
       out = std::move(r);
-      out.bits_tried = std::move(tried);
+      out.tried = std::move(tried);
       have = true;
       return Outcome::smaller;
     };
-    if (attempt(12) == Outcome::unreachable) {
-      for (int bits = 13; bits <= kMaxPackBits && !have; ++bits) attempt(bits);
+    if (attempt(12, fixed_scale) == Outcome::unreachable) {
+      for (int bits = 13; bits <= kMaxPackBits && !have; ++bits) attempt(bits, fixed_scale);
     } else {
-      for (int bits = 11; bits >= kMinPackBits && attempt(bits) == Outcome::smaller; --bits) {
+      for (int bits = 11; bits >= kMinPackBits && attempt(bits, fixed_scale) == Outcome::smaller; --bits) {
+      }
+    }
+    // Between the bit depths: steps coarser than 2^-b, b the best depth, each grid search starting from b's grid.
+    if (have && options.step_scale <= 0) {
+      const int b = out.bits;
+      const double best_grid = static_cast<double>(out.remesh.prm.lattice.A) * out.remesh.prm.frame.step;
+      for (double s : kStepScales) {
+        grid = best_grid;
+        attempt(b, s);
       }
     }
     if (!have)

@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdint>
+#include <iterator>
+#include <stdexcept>
 #include <map>
 #include <tuple>
 #include <string>
@@ -11,6 +14,7 @@
 #include "prm/mesh_io.h"
 #include "prm/pipeline/codec_bridge.h"
 #include "prm/pipeline/pack.h"
+#include "prm/remesh/lattice.h"
 #include "prm/remesh/reliefs.h"
 #include "prm/remesh/resample.h"
 #include "test_meshes.h"
@@ -184,6 +188,54 @@ TEST(Pack, ChosenHeightsMeetTheTargetInASmallerStream) {
     moved += differing;
   }
   EXPECT_GT(moved, 0u);
+}
+
+// The step scale (PackOptions::step_scale): a given one sets the stream's step; with a target error and no bit depth
+// the search also tries the scales of kStepScales and keeps the smallest stream of all it tried.
+TEST(Pack, StepScaleSetsTheStepAndTheSearchKeepsTheSmallestStream) {
+  const prm::Mesh input = prm::read_mesh(std::string(PRM_SHARED_MESHES) + "/spot.obj");
+  double extent = 0;
+  for (int a = 0; a < 3; ++a) {
+    double lo = input.positions[0][a], hi = lo;
+    for (const prm::Vec3& p : input.positions) lo = std::min(lo, p[a]), hi = std::max(hi, p[a]);
+    extent = std::max(extent, hi - lo);
+  }
+  PackOptions o;
+  o.target_error = 5e-4;
+  o.bits = 10;
+  o.step_scale = 1.3;
+  const prm::pipeline::PackResult fixed = prm::pipeline::pack(input, o);
+  EXPECT_EQ(fixed.step_scale, 1.3);
+  ASSERT_EQ(fixed.tried.size(), 1u);
+  EXPECT_NEAR(fixed.remesh.prm.frame.step, 1.3 * extent / 1023.0, 1e-12 * extent);
+  expect_exact_round_trip(fixed);
+  const auto fixed_decoded = prm::codec::decode(fixed.stream.data(), fixed.stream.size());
+  ASSERT_TRUE(fixed_decoded.ok());
+  EXPECT_EQ(fixed_decoded.value.frame.bits, 10);
+  EXPECT_DOUBLE_EQ(fixed_decoded.value.frame.step, fixed.remesh.prm.frame.step);
+  const prm::DistanceReport fd = prm::metro_distance(input, prm::pipeline::to_mesh(fixed_decoded.value));
+  EXPECT_LE(fd.rel(fd.rms), 5e-4);
+
+  o.bits = 0;
+  o.step_scale = 0;
+  const prm::pipeline::PackResult r = prm::pipeline::pack(input, o);
+  size_t smallest = SIZE_MAX, scaled = 0;
+  for (const auto& t : r.tried) {
+    smallest = std::min(smallest, t.bytes);
+    scaled += t.step_scale != 1.0;
+    std::printf("spot at 5e-4: %d bits, step x%.3f: %zu bytes\n", t.bits, t.step_scale, t.bytes);
+  }
+  EXPECT_EQ(scaled, std::size(prm::pipeline::kStepScales));
+  EXPECT_EQ(r.stream.size(), smallest);
+  EXPECT_NEAR(r.remesh.prm.frame.step, r.step_scale * extent / static_cast<double>((1 << r.bits) - 1), 1e-12 * extent);
+  expect_exact_round_trip(r);
+  const auto decoded = prm::codec::decode(r.stream.data(), r.stream.size());
+  ASSERT_TRUE(decoded.ok());
+  const prm::DistanceReport d = prm::metro_distance(input, prm::pipeline::to_mesh(decoded.value));
+  EXPECT_LE(d.rel(d.rms), 5e-4);
+
+  EXPECT_THROW(prm::remesh::QuantFrame::of_mesh(input, 10, 2.0), std::invalid_argument);
+  EXPECT_THROW(prm::remesh::QuantFrame::of_mesh(input, 10, 0.99), std::invalid_argument);
 }
 
 TEST(Pack, PrmFileIsRecognisedByEncodeAnyMesh) {

@@ -6,8 +6,9 @@
 
 namespace prm::remesh {
 
-QuantFrame QuantFrame::of_mesh(const Mesh& mesh, int bits) {
+QuantFrame QuantFrame::of_mesh(const Mesh& mesh, int bits, double step_scale) {
   if (bits < 8 || bits > 20) throw std::invalid_argument("quantization bits must be in 8..20");
+  if (!(step_scale >= 1.0 && step_scale < 2.0)) throw std::invalid_argument("the quantization step scale must be in [1, 2)");
   QuantFrame f;
   f.bits = bits;
   if (mesh.positions.empty()) return f;
@@ -19,7 +20,7 @@ QuantFrame QuantFrame::of_mesh(const Mesh& mesh, int bits) {
     }
   const double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
   f.origin = lo;
-  f.step = extent > 0 ? extent / static_cast<double>((int64_t{1} << bits) - 1) : 1.0;
+  f.step = extent > 0 ? step_scale * extent / static_cast<double>((int64_t{1} << bits) - 1) : 1.0;
   return f;
 }
 

@@ -17,7 +17,7 @@ void add_pack_command(CLI::App& root) {
       "pack", "Remesh a mesh into a piecewise regular mesh and compress it into a .prm stream (repair + remesh + encode)");
   struct Options {
     std::string input, output, keep_prm;
-    double target = 0, grid = 0, grid_fraction = 0, tau = 0.2, lambda = 0;
+    double target = 0, grid = 0, grid_fraction = 0, tau = 0.2, lambda = 0, step_scale = 0;
     int bits = 0;
     size_t samples = 0;
     bool json = false, no_fit = false, round_heights = false;
@@ -41,6 +41,10 @@ void add_pack_command(CLI::App& root) {
                   "Quantization bits per coordinate (8..20). Default: with --target-error, the bit depth (8..16) that "
                   "gives the smallest stream meeting it; otherwise 12")
       ->check(CLI::Range(8, 20));
+  cmd->add_option("--step-scale", opt->step_scale,
+                  "Quantization step in units of 2^-bits of the bounding box's largest extent, in [1, 2). Default: with "
+                  "--target-error and no --bits, also searched between the bit depths; otherwise 1")
+      ->check(CLI::Range(1.0, 1.999999));
   cmd->add_option("--samples", opt->samples, "Metro samples per surface for the target-error search (default 0: Metro's ten per face)");
   cmd->add_option("--keep-prm", opt->keep_prm, "Also write the piecewise regular mesh (PLY with lattice labels)");
   cmd->add_flag("--interpolate-heights", opt->no_fit,
@@ -63,6 +67,7 @@ void add_pack_command(CLI::App& root) {
     po.grid_fraction = opt->grid_fraction;
     po.tau = opt->tau;
     po.bits = opt->bits;
+    po.step_scale = opt->step_scale;
     po.metro_samples = opt->samples;
     po.fit_heights = !opt->no_fit;
     po.height_lambda = opt->lambda;
@@ -83,6 +88,8 @@ void add_pack_command(CLI::App& root) {
     const double g = static_cast<double>(r.remesh.prm.lattice.A) * r.remesh.prm.frame.step;
     const size_t geometry = rep.total_bytes - rep.header_bytes - rep.framing_bytes - rep.connectivity_bytes -
                             rep.irregular_bytes;
+    nlohmann::json tried = nlohmann::json::array();
+    for (const auto& t : r.tried) tried.push_back({{"bits", t.bits}, {"step_scale", t.step_scale}, {"bytes", t.bytes}});
     if (opt->json) {
       nlohmann::json j = {
           {"input", opt->input},
@@ -95,7 +102,9 @@ void add_pack_command(CLI::App& root) {
           {"grid_steps", r.remesh.prm.lattice.A},
           {"tau", opt->tau},
           {"bits", r.bits},
-          {"bits_tried", r.bits_tried},
+          {"step_scale", r.step_scale},
+          {"step", r.remesh.prm.frame.step},
+          {"tried", tried},
           {"regular_share", s.faces ? static_cast<double>(s.regular_faces) / s.faces : 0.0},
           {"regular_patches", rep.regular_patches},
           {"height_lambda", r.codec_options.height_lambda},
@@ -119,9 +128,14 @@ void add_pack_command(CLI::App& root) {
                   s.faces ? 100.0 * static_cast<double>(s.regular_faces) / s.faces : 0.0, rep.regular_patches);
       std::printf("  error of the decoded mesh to the input: RMS %.3e, max %.3e of the diagonal, at %d bits",
                   r.remesh.error.rms, r.remesh.error.max, r.bits);
-      if (r.bits_tried.size() > 1) {
-        std::printf(" (bit depths tried:");
-        for (const auto& [b, bytes] : r.bits_tried) std::printf(" %d: %zu B", b, bytes);
+      if (r.step_scale != 1) std::printf(" with the step x%.3f", r.step_scale);
+      if (r.tried.size() > 1) {
+        std::printf(" (tried:");
+        for (const auto& t : r.tried) {
+          std::printf(" %d", t.bits);
+          if (t.step_scale != 1) std::printf(" x%.3f", t.step_scale);
+          std::printf(": %zu B", t.bytes);
+        }
         std::printf(")");
       }
       if (r.codec_options.height_lambda > 0)

@@ -17,8 +17,10 @@ struct QuantFrame {
   double step = 1;
   int bits = 12;
 
-  // The frame of a mesh's bounding box: step = largest extent / (2^bits - 1).
-  static QuantFrame of_mesh(const Mesh& mesh, int bits);
+  // The frame of a mesh's bounding box: step = step_scale * largest extent / (2^bits - 1), step_scale in [1, 2)
+  // (a coarser step than 2^-bits of the extent: the spec's header carries any step, and the grid size, a whole
+  // number of steps, then comes in finer increments).
+  static QuantFrame of_mesh(const Mesh& mesh, int bits, double step_scale = 1.0);
 
   double to_quant(double p, int axis) const { return (p - origin[axis]) / step; }
   double to_real(double q, int axis) const { return origin[axis] + q * step; }

@@ -14,6 +14,7 @@ namespace prm::remesh {
 
 struct RemeshOptions {
   int bits = 12;                 // quantization of the codec that will store the result (sets the lattice units)
+  double step_scale = 1.0;       // the quantization step in units of 2^-bits of the extent, in [1, 2)
   ReliefOptions reliefs;         // tau, geodesics
   // The grid size: exactly one of these, or target_error.
   double grid_size = 0;          // model units
