@@ -15,12 +15,16 @@ namespace {
 
 class DracoRun : public CodecRun {
  public:
-  DracoRun(std::unique_ptr<draco::Mesh> input, int speed, int bits)
-      : input_(std::move(input)), speed_(speed), bits_(bits) {}
+  DracoRun(std::unique_ptr<draco::Mesh> input, int speed, int bits, std::optional<DracoGrid> grid)
+      : input_(std::move(input)), speed_(speed), bits_(bits), grid_(grid) {}
 
   bool encode() override {
     draco::Encoder encoder;
-    encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION, bits_);
+    if (grid_)
+      encoder.SetAttributeExplicitQuantization(draco::GeometryAttribute::POSITION, bits_, 3, grid_->origin.data(),
+                                               grid_->range);
+    else
+      encoder.SetAttributeQuantization(draco::GeometryAttribute::POSITION, bits_);
     encoder.SetSpeedOptions(speed_, speed_);
     encoder.SetEncodingMethod(draco::MESH_EDGEBREAKER_ENCODING);
     draco::EncoderBuffer buffer;
@@ -71,6 +75,7 @@ class DracoRun : public CodecRun {
   std::unique_ptr<draco::Mesh> input_;
   int speed_;
   int bits_;
+  std::optional<DracoGrid> grid_;
   std::vector<char> stream_;
   std::unique_ptr<draco::Mesh> decoded_;
 };
@@ -97,7 +102,7 @@ std::unique_ptr<CodecRun> DracoCodec::start(const Mesh& mesh, std::string* why) 
     if (why) *why = "draco::TriangleSoupMeshBuilder::Finalize failed";
     return nullptr;
   }
-  return std::make_unique<DracoRun>(std::move(input), 10 - level_, bits_);
+  return std::make_unique<DracoRun>(std::move(input), 10 - level_, bits_, grid_);
 }
 
 }  // namespace prm::bench

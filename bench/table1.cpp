@@ -75,6 +75,7 @@ struct Result {
   size_t conn = 0, irreg = 0, geom = 0, total = 0;
   double enc = 0, dec = 0, draco_dec = 0, remesh = 0;
   int bits = 12;  // the stream's quantization; Draco's S_r uses the same (S_o: 12 bits)
+  double step_scale = 1;  // the stream's step in units of 2^-bits of the extent (PackResult::step_scale)
 };
 
 std::vector<std::string> split(const std::string& s, char sep) {
@@ -125,6 +126,7 @@ Result measure(const std::string& name, const std::string& path, double target, 
   const prm::pipeline::PackResult pack = prm::pipeline::pack(original, po);
   r.remesh = pack.seconds_repair + pack.seconds_remesh;
   r.bits = pack.bits;
+  r.step_scale = pack.step_scale;
   r.n_r = pack.remesh.prm.mesh.num_vertices();
   r.g = static_cast<double>(pack.remesh.prm.lattice.A) * pack.remesh.prm.frame.step;
   r.g_rel = r.g / prm::bbox_diagonal(original);
@@ -156,7 +158,12 @@ Result measure(const std::string& name, const std::string& path, double target, 
   r.e_max = d.rel(d.max);
 
   // Draco on the original and on the PRM mesh.
-  const prm::bench::DracoCodec draco(10), draco_same_bits(10, pack.bits);
+  // At the stream's bit depth Draco gets the stream's own grid (origin and step; with a step scale above 1 its
+  // bounding-box grid would not hold our positions); at 12 bits and elsewhere, Draco's default.
+  prm::bench::DracoGrid grid;
+  for (int a = 0; a < 3; ++a) grid.origin[static_cast<size_t>(a)] = static_cast<float>(decoded.value.frame.origin[static_cast<size_t>(a)]);
+  grid.range = static_cast<float>(decoded.value.frame.step * static_cast<double>((1 << pack.bits) - 1));
+  const prm::bench::DracoCodec draco(10), draco_same_bits(10, pack.bits, grid);
   std::string why;
   auto on_original = draco.start(original, &why);
   if (!on_original || !on_original->encode()) throw std::runtime_error("Draco on the original: " + why);
@@ -169,10 +176,11 @@ Result measure(const std::string& name, const std::string& path, double target, 
   if (!on_prm12 || !on_prm12->encode()) throw std::runtime_error("Draco on the PRM at 12 bits: " + why);
   r.s_r12 = on_prm12->stream_bytes();
   // Equal error: Draco on the same PRM at the fewest bits whose decoded mesh meets the target too (its quantization
-  // adds to the PRM's error: at the stream's bit depth it often misses the target our stream meets).
+  // adds to the PRM's error: at the stream's bit depth it often misses the target our stream meets). From one bit
+  // below the stream's: with a step scale above 1 our step lies between those of two Draco bit depths.
   const prm::Mesh& reference = pack.repaired ? pack.repaired_input : original;
-  for (int b = pack.bits; b <= 16 && r.bits_re == 0; ++b) {
-    const prm::bench::DracoCodec at_b(10, b);
+  for (int b = std::max(8, pack.bits - 1); b <= 16 && r.bits_re == 0; ++b) {
+    const prm::bench::DracoCodec at_b = b == pack.bits ? draco_same_bits : prm::bench::DracoCodec(10, b);
     auto run = at_b.start(out, &why);
     if (!run || !run->encode() || !run->decode()) throw std::runtime_error("Draco on the PRM at " + std::to_string(b) + " bits: " + why);
     const prm::DistanceReport dd = prm::metro_distance(reference, run->decoded_mesh());
@@ -216,9 +224,14 @@ void print_markdown(const std::vector<Result>& rows) {
       std::printf("| %s | %zu | %s ||||||||||||||||||||||\n", r.mesh.c_str(), r.n_o, r.failure.c_str());
       continue;
     }
-    std::printf("| %s | %zu | %zu | %.4g | %.5f | %d | %.1f%% | %.2f | %s | %s | %s | %s | %s | **%s** | **%.2f** | %.3f | "
+    char bits[32];
+    if (r.step_scale != 1)
+      std::snprintf(bits, sizeof bits, "%d ×%.2f", r.bits, r.step_scale);
+    else
+      std::snprintf(bits, sizeof bits, "%d", r.bits);
+    std::printf("| %s | %zu | %zu | %.4g | %.5f | %s | %.1f%% | %.2f | %s | %s | %s | %s | %s | **%s** | **%.2f** | %.3f | "
                 "%.3f | %.3f | %.2f | %d | %s | %.1f | %.1f | %.1f | %.2f | %.1f |\n",
-                r.mesh.c_str(), r.n_o, r.n_r, r.g, r.g_rel, r.bits, 100 * r.regular_share, r.e * 1e4, kb(r.s_o).c_str(),
+                r.mesh.c_str(), r.n_o, r.n_r, r.g, r.g_rel, bits, 100 * r.regular_share, r.e * 1e4, kb(r.s_o).c_str(),
                 kb(r.s_r).c_str(), kb(r.conn).c_str(), kb(r.irreg).c_str(), kb(r.geom).c_str(), kb(r.total).c_str(),
                 8.0 * static_cast<double>(r.total) / static_cast<double>(r.n_r),
                 static_cast<double>(r.total) / static_cast<double>(r.s_o),
@@ -240,20 +253,20 @@ void print_markdown(const std::vector<Result>& rows) {
 
 void print_csv(std::FILE* f, const std::vector<Result>& rows) {
   std::fprintf(f,
-               "source,mesh,target,n_o,n_r,g,g_rel,bits,regular_share,e,e_max,s_o_bytes,s_r_bytes,s_r12_bytes,draco_prm_e,"
+               "source,mesh,target,n_o,n_r,g,g_rel,bits,step_scale,regular_share,e,e_max,s_o_bytes,s_r_bytes,s_r12_bytes,draco_prm_e,"
                "s_re_bits,s_re_bytes,conn_bytes,irreg_bytes,"
                "geom_bytes,total_bytes,bpv,total_over_s_o,total_over_s_r,encode_s,decode_s,draco_decode_s,remesh_s,"
                "failure\n");
   for (const Result& r : rows)
-    std::fprintf(f, "ours,\"%s\",%g,%zu,%zu,%.9g,%.9g,%d,%.6f,%.6g,%.6g,%zu,%zu,%zu,%.6g,%d,%zu,%zu,%zu,%zu,%zu,%.4f,%.4f,%.4f,%.6g,%.6g,%.6g,%.4g,%s\n",
-                 r.mesh.c_str(), r.target, r.n_o, r.n_r, r.g, r.g_rel, r.bits, r.regular_share, r.e, r.e_max, r.s_o, r.s_r,
+    std::fprintf(f, "ours,\"%s\",%g,%zu,%zu,%.9g,%.9g,%d,%.6g,%.6f,%.6g,%.6g,%zu,%zu,%zu,%.6g,%d,%zu,%zu,%zu,%zu,%zu,%.4f,%.4f,%.4f,%.6g,%.6g,%.6g,%.4g,%s\n",
+                 r.mesh.c_str(), r.target, r.n_o, r.n_r, r.g, r.g_rel, r.bits, r.step_scale, r.regular_share, r.e, r.e_max, r.s_o, r.s_r,
                  r.s_r12, r.e_r, r.bits_re, r.s_re,
                  r.conn, r.irreg, r.geom, r.total, r.n_r ? 8.0 * static_cast<double>(r.total) / static_cast<double>(r.n_r) : 0.0,
                  r.s_o ? static_cast<double>(r.total) / static_cast<double>(r.s_o) : 0.0,
                  r.s_r ? static_cast<double>(r.total) / static_cast<double>(r.s_r) : 0.0, r.enc, r.dec, r.draco_dec,
                  r.remesh, r.failure.c_str());
   for (const PaperRow& p : kPaper)
-    std::fprintf(f, "paper,\"%s\",%g,%.0f,%.0f,%g,,12,,%g,,%.0f,%.0f,,,,,%.0f,%.0f,%.0f,%.0f,%.4f,%.4f,%.4f,,%g,,,\n", p.model,
+    std::fprintf(f, "paper,\"%s\",%g,%.0f,%.0f,%g,,12,1,,%g,,%.0f,%.0f,,,,,%.0f,%.0f,%.0f,%.0f,%.4f,%.4f,%.4f,,%g,,,\n", p.model,
                  p.e4 * 1e-4, p.n_o, p.n_r, p.g, p.e4 * 1e-4, p.s_o * 1024, p.s_r * 1024, p.conn * 1024,
                  p.irreg * 1024, p.geom * 1024, p.total * 1024, 8192.0 * p.total / p.n_r, p.total / p.s_o,
                  p.total / p.s_r, p.t);

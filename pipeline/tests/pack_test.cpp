@@ -58,6 +58,16 @@ void expect_exact_round_trip(const prm::pipeline::PackResult& r) {
   expect_exact_round_trip(r.remesh.prm, r.stream, r.report);
 }
 
+double largest_extent(const prm::Mesh& m) {
+  double extent = 0;
+  for (int a = 0; a < 3; ++a) {
+    double lo = m.positions[0][a], hi = lo;
+    for (const prm::Vec3& p : m.positions) lo = std::min(lo, p[a]), hi = std::max(hi, p[a]);
+    extent = std::max(extent, hi - lo);
+  }
+  return extent;
+}
+
 struct Case {
   const char* file;
   double grid_fraction;
@@ -132,6 +142,8 @@ TEST(Pack, SelfOverlappingPatchRoundTrips) {
   }
 }
 
+// With a target error and no bit depth, the search tries the bit depths and then the step scales of kStepScales at
+// the best one, and keeps the smallest stream of all it tried, whose decoded mesh meets the target.
 TEST(Pack, GridFromTargetError) {
   const prm::Mesh input = prm::read_mesh(std::string(PRM_SHARED_MESHES) + "/spot.obj");
   PackOptions o;
@@ -139,9 +151,20 @@ TEST(Pack, GridFromTargetError) {
   const prm::pipeline::PackResult r = prm::pipeline::pack(input, o);
   EXPECT_LE(r.remesh.error.rms, prm::pipeline::kQuantizationMargin * 5e-4);
   expect_exact_round_trip(r);
+  size_t smallest = SIZE_MAX, scaled = 0;
+  for (const auto& t : r.tried) {
+    smallest = std::min(smallest, t.bytes);
+    scaled += t.step_scale != 1.0;
+    std::printf("spot at 5e-4: %d bits, step x%.3f: %zu bytes\n", t.bits, t.step_scale, t.bytes);
+  }
+  EXPECT_EQ(scaled, std::size(prm::pipeline::kStepScales));
+  EXPECT_EQ(r.stream.size(), smallest);
+  const double extent = largest_extent(input);
+  EXPECT_NEAR(r.remesh.prm.frame.step, r.step_scale * extent / static_cast<double>((1 << r.bits) - 1), 1e-12 * extent);
   // The decoded mesh itself meets the target.
   const auto decoded = prm::codec::decode(r.stream.data(), r.stream.size());
   ASSERT_TRUE(decoded.ok());
+  EXPECT_DOUBLE_EQ(decoded.value.frame.step, r.remesh.prm.frame.step);
   const prm::DistanceReport d = prm::metro_distance(input, prm::pipeline::to_mesh(decoded.value));
   EXPECT_LE(d.rel(d.rms), 5e-4);
 }
@@ -190,16 +213,10 @@ TEST(Pack, ChosenHeightsMeetTheTargetInASmallerStream) {
   EXPECT_GT(moved, 0u);
 }
 
-// The step scale (PackOptions::step_scale): a given one sets the stream's step; with a target error and no bit depth
-// the search also tries the scales of kStepScales and keeps the smallest stream of all it tried.
-TEST(Pack, StepScaleSetsTheStepAndTheSearchKeepsTheSmallestStream) {
+// A given step scale (PackOptions::step_scale) sets the stream's step.
+TEST(Pack, StepScaleSetsTheStep) {
   const prm::Mesh input = prm::read_mesh(std::string(PRM_SHARED_MESHES) + "/spot.obj");
-  double extent = 0;
-  for (int a = 0; a < 3; ++a) {
-    double lo = input.positions[0][a], hi = lo;
-    for (const prm::Vec3& p : input.positions) lo = std::min(lo, p[a]), hi = std::max(hi, p[a]);
-    extent = std::max(extent, hi - lo);
-  }
+  const double extent = largest_extent(input);
   PackOptions o;
   o.target_error = 5e-4;
   o.bits = 10;
@@ -215,24 +232,6 @@ TEST(Pack, StepScaleSetsTheStepAndTheSearchKeepsTheSmallestStream) {
   EXPECT_DOUBLE_EQ(fixed_decoded.value.frame.step, fixed.remesh.prm.frame.step);
   const prm::DistanceReport fd = prm::metro_distance(input, prm::pipeline::to_mesh(fixed_decoded.value));
   EXPECT_LE(fd.rel(fd.rms), 5e-4);
-
-  o.bits = 0;
-  o.step_scale = 0;
-  const prm::pipeline::PackResult r = prm::pipeline::pack(input, o);
-  size_t smallest = SIZE_MAX, scaled = 0;
-  for (const auto& t : r.tried) {
-    smallest = std::min(smallest, t.bytes);
-    scaled += t.step_scale != 1.0;
-    std::printf("spot at 5e-4: %d bits, step x%.3f: %zu bytes\n", t.bits, t.step_scale, t.bytes);
-  }
-  EXPECT_EQ(scaled, std::size(prm::pipeline::kStepScales));
-  EXPECT_EQ(r.stream.size(), smallest);
-  EXPECT_NEAR(r.remesh.prm.frame.step, r.step_scale * extent / static_cast<double>((1 << r.bits) - 1), 1e-12 * extent);
-  expect_exact_round_trip(r);
-  const auto decoded = prm::codec::decode(r.stream.data(), r.stream.size());
-  ASSERT_TRUE(decoded.ok());
-  const prm::DistanceReport d = prm::metro_distance(input, prm::pipeline::to_mesh(decoded.value));
-  EXPECT_LE(d.rel(d.rms), 5e-4);
 
   EXPECT_THROW(prm::remesh::QuantFrame::of_mesh(input, 10, 2.0), std::invalid_argument);
   EXPECT_THROW(prm::remesh::QuantFrame::of_mesh(input, 10, 0.99), std::invalid_argument);
