@@ -179,13 +179,13 @@ Result measure(const std::string& name, const std::string& path, double target, 
   // adds to the PRM's error: at the stream's bit depth it often misses the target our stream meets). From one bit
   // below the stream's: with a step scale above 1 our step lies between those of two Draco bit depths.
   const prm::Mesh& reference = pack.repaired ? pack.repaired_input : original;
-  for (int b = std::max(8, pack.bits - 1); b <= 16 && r.bits_re == 0; ++b) {
+  for (int b = std::max(8, pack.bits - 1); b <= 16 && (r.bits_re == 0 || b <= pack.bits); ++b) {
     const prm::bench::DracoCodec at_b = b == pack.bits ? draco_same_bits : prm::bench::DracoCodec(10, b);
     auto run = at_b.start(out, &why);
     if (!run || !run->encode() || !run->decode()) throw std::runtime_error("Draco on the PRM at " + std::to_string(b) + " bits: " + why);
     const prm::DistanceReport dd = prm::metro_distance(reference, run->decoded_mesh());
     if (b == pack.bits) r.e_r = dd.rel(dd.rms);
-    if (dd.rel(dd.rms) <= target) {
+    if (dd.rel(dd.rms) <= target && r.bits_re == 0) {
       r.bits_re = b;
       r.s_re = run->stream_bytes();
     }
