@@ -17,7 +17,7 @@
 namespace prm::codec {
 
 constexpr int kMaxHeightDepth = 6;  // §9.4 Height_Depth 0..6: difference patches
-constexpr int kHeightDepthPredicted = 7;  // §9.7 Height_Depth 7: linear prediction (format 1.2)
+constexpr int kHeightDepthPredicted = kLinearPredictionDepth;  // §9.7 Height_Depth 7: linear prediction (format 1.2)
 constexpr int kGridBits = 21;       // §8.4 Grid_Size: 21 direct bits
 
 struct HeightModels {

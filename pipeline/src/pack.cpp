@@ -91,6 +91,11 @@ PackResult pack_at(const Mesh& source, const MetroReference& reference, const Pa
       codec::PrmOptions o;
       o.height_tolerance = kHeightTolerance;
       o.height_lambda = kHeightLambdas[mid];
+      // Only linear prediction takes the freedom; the difference depths would code the same heights as above.
+      if (out.report.height_depth == codec::kLinearPredictionDepth) {
+        o.height_depth = out.report.height_depth;
+        o.overlap_depth = out.report.overlap_depth;
+      }
       codec::EncodeReport report;
       std::vector<uint8_t> stream;
       const remesh::ErrorEstimate e = encode_and_measure(out.remesh.prm, o, &report, &stream);

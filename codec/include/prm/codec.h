@@ -140,6 +140,9 @@ Result<std::vector<uint8_t>> encode_quantized(const uint32_t* q, size_t num_vert
                                               size_t num_triangles, const Frame& frame,
                                               EncodeReport* report = nullptr);
 
+// §9.4 Height_Depth 7: the heights by linear prediction (§9.7).
+constexpr int kLinearPredictionDepth = 7;
+
 // A piecewise regular mesh (spec §7-§9): positions pre-quantized in the frame whose lattices the mesh was built on
 // (docs/ARCHITECTURE.md: lattice point (i, j) of axis pair k at (U, W) = (A i + B j, C j), quantized units).
 struct PrmOptions {
