@@ -43,7 +43,8 @@ void add_pack_command(CLI::App& root) {
       ->check(CLI::Range(8, 20));
   cmd->add_option("--step-scale", opt->step_scale,
                   "Quantization step in units of 2^-bits of the bounding box's largest extent, in [1, 2). Default: with "
-                  "--target-error and no --bits, also searched between the bit depths; otherwise 1")
+                  "--target-error and no --bits, 1 and then 2^(1/8), 2^(1/4), 2^(3/8) at the best bit depth (three "
+                  "more grid searches; --step-scale 1 skips them); otherwise 1")
       ->check(CLI::Range(1.0, 1.999999));
   cmd->add_option("--samples", opt->samples, "Metro samples per surface for the target-error search (default 0: Metro's ten per face)");
   cmd->add_option("--keep-prm", opt->keep_prm, "Also write the piecewise regular mesh (PLY with lattice labels)");
