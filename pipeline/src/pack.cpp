@@ -17,7 +17,7 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// One bit depth: repair (done by the caller), remesh, encode.
+// One bit depth and step scale: repair (done by the caller), remesh, encode.
 PackResult pack_at(const Mesh& source, const MetroReference& reference, const PackOptions& options, int bits,
                    double step_scale, double initial_grid) {
   PackResult out;
