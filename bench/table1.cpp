@@ -180,9 +180,15 @@ Result measure(const std::string& name, const std::string& path, double target, 
   // below the stream's: with a step scale above 1 our step lies between those of two Draco bit depths.
   const prm::Mesh& reference = pack.repaired ? pack.repaired_input : original;
   for (int b = std::max(8, pack.bits - 1); b <= 16 && (r.bits_re == 0 || b <= pack.bits); ++b) {
-    const prm::bench::DracoCodec at_b = b == pack.bits ? draco_same_bits : prm::bench::DracoCodec(10, b);
-    auto run = at_b.start(out, &why);
-    if (!run || !run->encode() || !run->decode()) throw std::runtime_error("Draco on the PRM at " + std::to_string(b) + " bits: " + why);
+    // At the stream's bit depth, S_r's run (encoded above) is decoded; the other depths are Draco's default grid.
+    std::unique_ptr<prm::bench::CodecRun> other;
+    prm::bench::CodecRun* run = on_prm.get();
+    if (b != pack.bits) {
+      other = prm::bench::DracoCodec(10, b).start(out, &why);
+      run = other.get();
+      if (!run || !run->encode()) throw std::runtime_error("Draco on the PRM at " + std::to_string(b) + " bits: " + why);
+    }
+    if (!run->decode()) throw std::runtime_error("Draco on the PRM at " + std::to_string(b) + " bits: " + why);
     const prm::DistanceReport dd = prm::metro_distance(reference, run->decoded_mesh());
     if (b == pack.bits) r.e_r = dd.rel(dd.rms);
     if (dd.rel(dd.rms) <= target && r.bits_re == 0) {
