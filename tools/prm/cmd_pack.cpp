@@ -89,9 +89,9 @@ void add_pack_command(CLI::App& root) {
     const double g = static_cast<double>(r.remesh.prm.lattice.A) * r.remesh.prm.frame.step;
     const size_t geometry = rep.total_bytes - rep.header_bytes - rep.framing_bytes - rep.connectivity_bytes -
                             rep.irregular_bytes;
-    nlohmann::json tried = nlohmann::json::array();
-    for (const auto& t : r.tried) tried.push_back({{"bits", t.bits}, {"step_scale", t.step_scale}, {"bytes", t.bytes}});
     if (opt->json) {
+      nlohmann::json tried = nlohmann::json::array();
+      for (const auto& t : r.tried) tried.push_back({{"bits", t.bits}, {"step_scale", t.step_scale}, {"bytes", t.bytes}});
       nlohmann::json j = {
           {"input", opt->input},
           {"output", opt->output},
