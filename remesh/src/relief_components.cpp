@@ -38,7 +38,7 @@ void label_components(const Mesh& mesh, const std::vector<std::array<int32_t, 3>
 }
 
 size_t merge_small_reliefs(const Mesh& mesh, const std::vector<std::array<int32_t, 3>>& adjacency,
-                           const std::vector<Vec3>& face_normals, double tau, double min_area, int passes,
+                           const std::vector<Vec3>& face_normals, double min_facing, double min_area, int passes,
                            std::vector<int8_t>& axis, std::vector<int32_t>& face_relief,
                            std::vector<Relief>& reliefs) {
   const size_t nf = mesh.triangles.size();
@@ -83,7 +83,7 @@ size_t merge_small_reliefs(const Mesh& mesh, const std::vector<std::array<int32_
         const int target = reliefs[static_cast<size_t>(n)].axis;
         if (target == reliefs[r].axis) continue;
         const bool faces_it = std::all_of(faces_of[r].begin(), faces_of[r].end(), [&](uint32_t f) {
-          return axis_component(face_normals[f], target) >= tau;
+          return axis_component(face_normals[f], target) >= min_facing;
         });
         if (!faces_it) continue;
         for (uint32_t f : faces_of[r]) axis[f] = static_cast<int8_t>(target);

@@ -18,11 +18,12 @@ void label_components(const Mesh& mesh, const std::vector<std::array<int32_t, 3>
                       std::vector<Relief>& reliefs);
 
 // A relief smaller than min_area (slivers where the envelope turns for a moment, islands left by snapping) holds
-// no grid triangle at any useful grid size. Each one takes the axis of the neighbour it shares the longest boundary
-// with among those whose axis every one of its faces faces by at least tau (so the guarantee of paper §2.1 holds
-// after the merge). Repeats while something changes (at most `passes` times); returns the number of reliefs merged.
+// no grid triangle at any useful grid size, and its seams cost a PRM stream far more than its area. Each one takes
+// the axis of the neighbour it shares the longest boundary with among those whose axis every one of its faces faces
+// by at least min_facing (0 < min_facing <= tau: the merged relief is still a height field over its axis). Repeats
+// while something changes (at most `passes` times); returns the number of reliefs merged.
 size_t merge_small_reliefs(const Mesh& mesh, const std::vector<std::array<int32_t, 3>>& adjacency,
-                           const std::vector<Vec3>& face_normals, double tau, double min_area, int passes,
+                           const std::vector<Vec3>& face_normals, double min_facing, double min_area, int passes,
                            std::vector<int8_t>& axis, std::vector<int32_t>& face_relief, std::vector<Relief>& reliefs);
 
 // Total length of the edges whose two faces lie in different reliefs, each edge once.

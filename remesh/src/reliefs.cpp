@@ -37,6 +37,8 @@ void check_options(const ReliefOptions& o) {
     throw InputError("the edge snap must be in [0, 0.25), got " + std::to_string(o.snap));
   if (!(o.min_relief_triangles >= 0))
     throw InputError("min_relief_triangles must not be negative, got " + std::to_string(o.min_relief_triangles));
+  if (!(o.merge_facing > 0) || !(o.merge_facing < 1.0 / std::sqrt(3.0)))
+    throw InputError("merge_facing must be in (0, 1/sqrt(3)), got " + std::to_string(o.merge_facing));
 }
 
 }  // namespace
@@ -94,7 +96,8 @@ ReliefLayout build_reliefs(const Mesh& input, const ReliefOptions& options) {
     std::vector<Vec3> refined_normals(out.mesh.triangles.size());
     for (size_t f = 0; f < refined_normals.size(); ++f)
       refined_normals[f] = normals[static_cast<size_t>(out.source_face[f])];
-    out.merged_reliefs = merge_small_reliefs(out.mesh, refined_adjacency, refined_normals, options.tau,
+    out.merged_reliefs = merge_small_reliefs(out.mesh, refined_adjacency, refined_normals,
+                                             std::min(options.merge_facing, options.tau),
                                              options.min_relief_triangles * area / static_cast<double>(nf), 4, axis,
                                              out.face_relief, out.reliefs);
   }

@@ -88,7 +88,12 @@ void check_layout(const Mesh& input, const ReliefLayout& L, const ReliefOptions&
 
   // Facing: paper §2.1 puts the relief of v in the complement of A_v, n.v >= tau; the naive layout n.v >= 1/sqrt(3).
   // Tiling: each refined face lies in its source face with its orientation, and the pieces add up to it.
+  // Faces of small reliefs that joined a neighbour may face it by merge_facing only; their area is at most the
+  // merged reliefs' size limit each.
   const double min_facing = o.naive ? 1 / std::sqrt(3.0) : o.tau;
+  const double merged_facing = o.naive || o.min_relief_triangles <= 0 ? min_facing : std::min(o.merge_facing, o.tau);
+  double input_area = 0, below_tau_area = 0;
+  for (const Tri& t : input.triangles) input_area += face_area(input, t);
   std::vector<double> piece_area(input.triangles.size(), 0.0);
   size_t not_facing = 0, outside = 0, flipped = 0, needles = 0;
   double worst_quality_ratio = 1;
@@ -102,7 +107,9 @@ void check_layout(const Mesh& input, const ReliefLayout& L, const ReliefOptions&
     const Vec3 &a = input.positions[s[0]], &b = input.positions[s[1]], &c = input.positions[s[2]];
     const Vec3 sn = triangle_normal_area2(a, b, c);
     const int axis = L.reliefs[static_cast<size_t>(L.face_relief[f])].axis;
-    if (!(axis_component(normalized(sn), axis) >= min_facing - 1e-12)) ++not_facing;
+    const double facing = axis_component(normalized(sn), axis);
+    if (!(facing >= merged_facing - 1e-12)) ++not_facing;
+    if (!(facing >= min_facing - 1e-12)) below_tau_area += face_area(L.mesh, t);
     const Vec3 n = triangle_normal_area2(L.mesh.positions[t[0]], L.mesh.positions[t[1]], L.mesh.positions[t[2]]);
     if (!(dot(n, sn) > 0)) ++flipped;
     for (uint32_t v : t) {
@@ -119,13 +126,18 @@ void check_layout(const Mesh& input, const ReliefLayout& L, const ReliefOptions&
     if (ratio < 0.01) ++needles;
   }
   EXPECT_EQ(not_facing, 0u);
+  EXPECT_LE(below_tau_area, static_cast<double>(L.merged_reliefs) * o.min_relief_triangles * input_area /
+                                static_cast<double>(input.triangles.size()) * (1 + 1e-9))
+      << "faces below tau beyond what the merged reliefs can hold";
   EXPECT_EQ(flipped, 0u);
   EXPECT_EQ(outside, 0u);
   // No needles: every piece is at least 1/100 as well shaped as its source face. (The snap, 0.05, keeps every
   // region at least 0.05 of the face's smallest height wide, which bounds the ratio near snap / 4 on a badly
   // shaped face: the worst measured on the shared meshes is 0.015, rocker-arm at tau 0.05.) Without
   // snapping the boundary follows the zero sets exactly, and where one passes near a corner it must cut a needle.
-  if (o.snap > 0) EXPECT_EQ(needles, 0u) << "worst quality ratio " << worst_quality_ratio;
+  if (o.snap > 0) {
+    EXPECT_EQ(needles, 0u) << "worst quality ratio " << worst_quality_ratio;
+  }
   size_t bad_area = 0;
   for (size_t f = 0; f < input.triangles.size(); ++f) {
     const double a = face_area(input, input.triangles[f]);
@@ -284,8 +296,15 @@ TEST(ReliefConstruction, SmallerTauGivesShorterBoundariesAndFewerReliefs) {
   const ReliefLayout N = build_reliefs(m, naive());
   double prev_length = HUGE_VAL;
   size_t prev_count = SIZE_MAX;
+  // The construction of paper §2.1 alone: small reliefs merge only into neighbours they face by tau.
+  auto held = [](double tau) {
+    ReliefOptions o = with_tau(tau);
+    o.merge_facing = tau;
+    o.min_relief_triangles = 16;
+    return o;
+  };
   for (double tau : {0.577, 0.4, 0.3, 0.2}) {
-    const ReliefLayout L = build_reliefs(m, with_tau(tau));
+    const ReliefLayout L = build_reliefs(m, held(tau));
     EXPECT_LT(L.boundary_length, prev_length) << "tau " << tau;
     EXPECT_LT(L.reliefs.size(), prev_count) << "tau " << tau;
     prev_length = L.boundary_length;
@@ -293,7 +312,7 @@ TEST(ReliefConstruction, SmallerTauGivesShorterBoundariesAndFewerReliefs) {
   }
   EXPECT_LT(prev_length, 0.3 * N.boundary_length);
   EXPECT_LT(prev_count, N.reliefs.size() / 10);
-  const ReliefLayout L01 = build_reliefs(m, with_tau(0.1));
+  const ReliefLayout L01 = build_reliefs(m, held(0.1));
   EXPECT_LT(L01.boundary_length, 0.3 * N.boundary_length);
   EXPECT_LT(L01.reliefs.size(), N.reliefs.size() / 10);
 }

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "prm/error.h"
@@ -99,8 +100,11 @@ TEST(Reliefs, SmallerTauGivesSmootherBoundariesAndFewerReliefs) {
   double prev_length = HUGE_VAL;
   size_t prev_count = SIZE_MAX;
   for (double tau : {0.577, 0.4, 0.2, 0.1}) {
+    // The construction of paper §2.1 alone: small reliefs merge only into neighbours they face by tau.
     ReliefOptions o;
     o.tau = tau;
+    o.merge_facing = tau;
+    o.min_relief_triangles = 16;
     const ReliefLayout L = build_reliefs(m, o);
     EXPECT_LT(L.boundary_length, prev_length) << "tau " << tau;
     EXPECT_LE(L.reliefs.size(), prev_count) << "tau " << tau;
@@ -111,6 +115,22 @@ TEST(Reliefs, SmallerTauGivesSmootherBoundariesAndFewerReliefs) {
       EXPECT_LT(L.reliefs.size(), N.reliefs.size() / 5);
     }
   }
+}
+
+TEST(Reliefs, SmallReliefsJoinNeighboursTheyBarelyFace) {
+  // The default merge (reliefs under 256 mean triangles, facing 0.02) against the one held to tau (16, tau): fewer
+  // reliefs and shorter seams on the feline, whose paws and ears leave many small reliefs.
+  const Mesh m = load_closed(std::string(PRM_SHARED_MESHES) + "/feline.off");
+  ReliefOptions held;
+  held.merge_facing = held.tau;
+  held.min_relief_triangles = 16;
+  const ReliefLayout a = build_reliefs(m, held), b = build_reliefs(m, {});
+  EXPECT_GT(b.merged_reliefs, a.merged_reliefs);
+  EXPECT_LT(b.reliefs.size(), a.reliefs.size());
+  EXPECT_LT(b.boundary_length, a.boundary_length);
+  std::printf("feline reliefs %zu -> %zu, boundary %.4f -> %.4f\n", a.reliefs.size(), b.reliefs.size(),
+              a.boundary_length, b.boundary_length);
+  expect_exact_tiling(m, b, "feline");
 }
 
 TEST(Reliefs, SphereHasSixEqualReliefs) {

@@ -20,7 +20,8 @@ void add_reliefs_command(CLI::App& root) {
     double tau = 0.2;
     bool naive = false, json = false;
     std::string geodesic = "fmm";
-    double snap = 0.05, min_relief = 16;
+    double snap = 0.05, min_relief = remesh::ReliefOptions{}.min_relief_triangles,
+           merge_facing = remesh::ReliefOptions{}.merge_facing;
   };
   auto opt = std::make_shared<Options>();
   cmd->add_option("input", opt->input,
@@ -35,8 +36,12 @@ void add_reliefs_command(CLI::App& root) {
   cmd->add_option("--snap", opt->snap, "Drop boundary pieces shorter than this fraction of an edge (default 0.05)")
       ->check(CLI::Range(0.0, 0.24));
   cmd->add_option("--min-relief", opt->min_relief,
-                  "Reliefs smaller than this many mean triangles join a neighbour (default 16; 0: keep all)")
+                  "Reliefs smaller than this many mean triangles join a neighbour (default 256; 0: keep all)")
       ->check(CLI::NonNegativeNumber);
+  cmd->add_option("--merge-facing", opt->merge_facing,
+                  "A small relief joins a neighbour only if all its faces face that axis by at least this (n.v; "
+                  "default 0.02; --tau if smaller)")
+      ->check(CLI::Range(1e-9, 0.57735));
   cmd->add_flag("--json", opt->json, "Print the report as one JSON object");
   cmd->callback([opt] {
     Mesh mesh = read_mesh(opt->input);
@@ -49,6 +54,7 @@ void add_reliefs_command(CLI::App& root) {
     ro.naive = opt->naive;
     ro.snap = opt->snap;
     ro.min_relief_triangles = opt->min_relief;
+    ro.merge_facing = opt->merge_facing;
     ro.geodesic = opt->geodesic == "dijkstra" ? remesh::GeodesicMethod::Dijkstra : remesh::GeodesicMethod::FastMarching;
     const auto t0 = std::chrono::steady_clock::now();
     const remesh::ReliefLayout layout = remesh::build_reliefs(mesh, ro);
