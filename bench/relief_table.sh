@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # The relief measurement of issue 3 (bench/README.md, "Reliefs"): for every mesh of ../shared/meshes, the number
 # of reliefs and the total length of relief boundaries (as a multiple of the bounding-box diagonal) at
-# tau = 0.1, 0.2, 0.3, 0.4, 0.577 and for the naive layout (each triangle to the axis closest to its normal).
+# tau = 0.1, 0.2, 0.3, 0.4, 0.577 and for the naive layout (each triangle to the axis closest to its normal), with
+# small reliefs merged as the paper's construction allows (into neighbours they face by tau), and at tau 0.2 with
+# the remesher's default merge (reliefs under 256 mean triangles into neighbours they face by 0.02).
 #
 #   bench/relief_table.sh [PRM_BINARY] [--csv FILE]      (default binary: build/tools/prm/prm)
 # Prints a Markdown table. Meshes with holes are repaired first (`prm repair`), as the remesher does.
@@ -24,8 +26,12 @@ for f in "$meshes"/*.ply "$meshes"/*.off "$meshes"/*.obj; do
     in="$work/$name.ply"
   fi
   diag=$("$prm" info "$in" --json | python3 -c 'import json,sys; print(json.load(sys.stdin)["diagonal"])')
-  for tau in 0.1 0.2 0.3 0.4 0.577 naive; do
-    if [ "$tau" = naive ]; then args=(--naive); else args=(--tau "$tau"); fi
+  # The paper's construction (small reliefs merge only into neighbours they face by tau), then the default merge
+  # (reliefs under 256 mean triangles join a neighbour all their faces face by 0.02) at tau 0.2: "0.2+merge".
+  for tau in 0.1 0.2 0.3 0.4 0.577 naive 0.2+merge; do
+    if [ "$tau" = naive ]; then args=(--naive)
+    elif [ "$tau" = 0.2+merge ]; then args=(--tau 0.2)
+    else args=(--tau "$tau" --min-relief 16 --merge-facing "$tau"); fi
     "$prm" reliefs "$in" -o "$work/r.ply" "${args[@]}" --json |
       python3 -c 'import json,sys; d=json.load(sys.stdin); print(sys.argv[1], sys.argv[2], len(d["relief_list"]), d["boundary_length"]/float(sys.argv[3]), d["milliseconds"])' "$name" "$tau" "$diag"
   done
@@ -34,7 +40,7 @@ done > "$work/rows.txt"
 python3 - "$work/rows.txt" "$csv" <<'PY'
 import sys, collections
 rows = [l.split() for l in open(sys.argv[1])]
-taus = ["0.1", "0.2", "0.3", "0.4", "0.577", "naive"]
+taus = ["0.1", "0.2", "0.3", "0.4", "0.577", "naive", "0.2+merge"]
 by = collections.OrderedDict()
 for name, tau, n, length, ms in rows:
     by.setdefault(name, {})[tau] = (int(n), float(length), float(ms))

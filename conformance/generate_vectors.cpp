@@ -77,9 +77,10 @@ void invalid(const fs::path& dir, const std::string& name, const std::vector<uin
   std::printf("%-40s %6zu bytes -> %s\n", name.c_str(), stream.size(), error);
 }
 
-std::vector<uint8_t> general(const TestMesh& m, int bits) {
+std::vector<uint8_t> general(const TestMesh& m, int bits, int seam_context = 0) {
   EncodeOptions o;
   o.position_bits = bits;
+  o.seam_context = seam_context;  // the 1.0 vectors were written before format 1.3's seam context
   return encode(m.xyz.data(), m.num_vertices(), m.triangles.data(), m.num_triangles(), o).value;
 }
 
@@ -88,7 +89,7 @@ int64_t bumpy_top(int i, int j, const void*) {
 }
 int64_t bumpy_bottom(int i, int j, const void*) { return 1000 - std::lround(40 * std::cos(0.25 * i + 0.1 * j)); }
 
-std::vector<uint8_t> pillow_stream(int r, int perturb, int depth, uint32_t seed = 1) {
+std::vector<uint8_t> pillow_stream(int r, int perturb, int depth, uint32_t seed = 1, int seam_context = 0) {
   std::vector<std::array<int, 2>> moved;
   uint32_t x = seed;
   for (int k = 0; k < perturb; ++k) {  // a small LCG: the same points on every platform
@@ -106,6 +107,7 @@ std::vector<uint8_t> pillow_stream(int r, int perturb, int depth, uint32_t seed 
   PrmOptions o;
   o.grid = 8;
   o.height_depth = depth;
+  o.seam_context = seam_context;
   return encode_prm(m.q.data(), m.nv(), m.tris.data(), m.nt(), f, o).value;
 }
 
@@ -123,7 +125,7 @@ void fix_crc(std::vector<uint8_t>& s) {  // CRC-32 (spec 3.5), bitwise
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: %s OUT_DIR [--only-prm-1.1]\n", argv[0]);
+    std::fprintf(stderr, "usage: %s OUT_DIR [--only-prm-1.1 | --only-1.3]\n", argv[0]);
     return 1;
   }
   const fs::path dir = argv[1];
@@ -132,6 +134,15 @@ int main(int argc, char** argv) {
           "PRM stream of format 1.1: LERS without valence context, difference patches", "\"7.2\", \"8.3\", \"9.3\"");
     return 0;
   }
+  // Format 1.3 (§6.5.2 the seam context), added without touching the older vectors.
+  const bool only_13 = argc > 2 && std::string(argv[2]) == "--only-1.3";
+  valid(dir, "006-general-1.3-seam-context",
+        general(concat({sphere_with_holes(2, 3), plate_with_holes(2, 1), icosphere(2)}), 12, 1), "1.3",
+        "the CLERS seam context (Flags bit 2) on a general-path stream: holes, a handle, irregular and regular vertices",
+        "\"3.2\", \"3.3\", \"6.5.2\"");
+  valid(dir, "015-prm-1.3-seam-context", pillow_stream(12, 9, 7, 3, 1), "1.3",
+        "PRM stream with the CLERS seam context, linear prediction, off-lattice vertices", "\"6.5.2\", \"9.7.4\"");
+  if (only_13) return 0;
   valid(dir, "001-tetrahedron", general(tetrahedron(), 12), "1.0", "the worked example of 3.6 and 6.9",
         "\"3.6\", \"6.9\"");
   valid(dir, "002-genus1-plate", general(plate_with_holes(1, 1), 12), "1.0", "handle events, genus 1", "\"6.4.6\"");

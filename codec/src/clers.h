@@ -43,14 +43,15 @@ Status plan_connectivity(const uint32_t* triangles, size_t num_triangles, size_t
                          ConnectivityPlan& plan);
 
 // §6.3 Writes the connectivity section payload. Runs Spirale Reversi over the plan's symbols for the contexts, and
-// checks that it rebuilds plan.mesh exactly (Error::internal otherwise).
-Status write_connectivity(const ConnectivityPlan& plan, std::vector<uint8_t>& payload);
+// checks that it rebuilds plan.mesh exactly (Error::internal otherwise). seam_context: §6.5.2's Seam input (the
+// stream's Flags bit 2).
+Status write_connectivity(const ConnectivityPlan& plan, bool seam_context, std::vector<uint8_t>& payload);
 
 // §6.3-6.4 Reads the section at stream offset `offset`. `header_vertices` / `header_triangles` are the header's
 // counts of the output mesh (dummies removed), checked against what the section decodes to. With dummies, also
 // fills mesh.output_triangles and mesh.old_to_new (§6.7).
 Status read_connectivity(const uint8_t* data, size_t size, uint64_t offset, const DecodeLimits& limits,
-                         uint32_t header_vertices, uint32_t header_triangles, ClosedMesh& mesh);
+                         uint32_t header_vertices, uint32_t header_triangles, bool seam_context, ClosedMesh& mesh);
 
 
 }  // namespace prm::codec

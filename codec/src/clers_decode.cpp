@@ -21,7 +21,7 @@ Status reader_error(const StreamReader& r, const char* section, const char* what
 }  // namespace
 
 Status read_connectivity(const uint8_t* data, size_t size, uint64_t offset, const DecodeLimits& limits,
-                         uint32_t header_vertices, uint32_t header_triangles, ClosedMesh& mesh) {
+                         uint32_t header_vertices, uint32_t header_triangles, bool seam_context, ClosedMesh& mesh) {
   StreamReader r(data, size, offset);
   // §6.3 Component_Count and Component_Size[]: plausibility before allocation (§4.3): every varint takes a byte.
   const uint32_t num_components = r.varint();
@@ -175,7 +175,7 @@ Status read_connectivity(const uint8_t* data, size_t size, uint64_t offset, cons
     uint8_t s = kE;
     const uint32_t depth = sr.stack_depth();
     if (depth > 0) {
-      BitModel* m = models->m[clers_context(prev1, prev2, sr.gate_start_count())];
+      BitModel* m = models->m[clers_context(prev1, prev2, sr.gate_start_count(), seam_context ? sr.gate_start_seam() : 0)];
       if (!rc.decode_bit(m[0])) {
         s = kC;
       } else if (!rc.decode_bit(m[1])) {

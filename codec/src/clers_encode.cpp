@@ -242,7 +242,7 @@ Status plan_connectivity(const uint32_t* triangles, size_t num_triangles, size_t
 
 // §6.3 The connectivity section: component sizes, handles, dummies (varints), then the range-coded symbols in
 // decoding order (reverse forward order).
-Status write_connectivity(const ConnectivityPlan& plan, std::vector<uint8_t>& payload) {
+Status write_connectivity(const ConnectivityPlan& plan, bool seam_context, std::vector<uint8_t>& payload) {
   StreamWriter w;
   w.varint(static_cast<uint32_t>(plan.component_sizes.size()));
   for (uint32_t s : plan.component_sizes) w.varint(s);
@@ -296,7 +296,7 @@ Status write_connectivity(const ConnectivityPlan& plan, std::vector<uint8_t>& pa
     const uint8_t s = plan.symbols[i];
     const uint32_t depth = sr.stack_depth();
     if (depth > 0) {  // §6.5.1 with no piece on the stack the symbol is E and is not coded
-      BitModel* m = models->m[clers_context(prev1, prev2, sr.gate_start_count())];
+      BitModel* m = models->m[clers_context(prev1, prev2, sr.gate_start_count(), seam_context ? sr.gate_start_seam() : 0)];
       rc.encode_bit(m[0], s != kC);
       if (s != kC) {
         rc.encode_bit(m[1], s != kR);

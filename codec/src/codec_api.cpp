@@ -89,8 +89,12 @@ Status check_frame(const Frame& f) {
 }
 
 Status encode_impl(const uint32_t* q, size_t nv, const uint32_t* tris, size_t nt, const Frame& frame,
-                   std::vector<uint8_t>& out, EncodeReport* report, const PrmOptions* prm = nullptr) {
+                   std::vector<uint8_t>& out, EncodeReport* report, const PrmOptions* prm = nullptr,
+                   int seam_context = -1) {
   PRM_TRY(check_frame(frame));
+  if (prm) seam_context = prm->seam_context;
+  if (seam_context < -1 || seam_context > 1)
+    return make_status(Error::invalid_argument, "6.5.2", 0, "seam context must be -1 (the smaller), 0 or 1");
   if (prm) {
     if (prm->grid < 2 || prm->grid > (int64_t{1} << frame.bits))
       return make_status(Error::invalid_argument, "8.4", 0, "grid size must be 2..2^bits quantization steps");
@@ -136,7 +140,16 @@ Status encode_impl(const uint32_t* q, size_t nv, const uint32_t* tris, size_t nt
   h.vertices = real;
   h.triangles = static_cast<uint32_t>(nt);
   std::vector<uint8_t> conn, pos, irregular_payload, patch_payload;
-  PRM_TRY(write_connectivity(plan, conn));
+  // §6.5.2 The seam context (Flags bit 2, format 1.3): with it, without it, or the smaller of the two.
+  if (seam_context != 0) PRM_TRY(write_connectivity(plan, true, conn));
+  if (seam_context != 1) {
+    std::vector<uint8_t> plain;
+    PRM_TRY(write_connectivity(plan, false, plain));
+    if (seam_context == 0 || plain.size() <= conn.size()) conn = std::move(plain);
+    else h.flags |= kFlagClersSeam;
+  } else {
+    h.flags |= kFlagClersSeam;
+  }
   // §7-§9 A PRM: regular triangles found by the encoder's own check; none: the general path.
   std::vector<int8_t> tri_axis;
   std::vector<uint8_t> known;
@@ -209,12 +222,13 @@ Status encode_impl(const uint32_t* q, size_t nv, const uint32_t* tris, size_t nt
         patch_stats = st;
       }
     }
-    h.version_minor = kFormatMinorPredicted;  // §3.2 1.2: the valence context, whatever the height coding
+    h.version_minor = kFormatMinorPredicted;  // §3.2 1.2: the valence context, whatever the height coding (1.3 below)
     if (!coded_positions.empty()) cq = std::move(coded_positions);  // the heights the patches section holds
     PRM_TRY(write_positions(mesh, cq, h.bbox_min, h.bbox_max, pos, &known));
   } else {
     PRM_TRY(write_positions(mesh, cq, h.bbox_min, h.bbox_max, pos));
   }
+  if (h.flags & kFlagClersSeam) h.version_minor = kFormatMinorSeam;  // §3.2 1.3
   size_t header_bytes = 0;
   if (regular > 0)
     out = write_container(h,
@@ -278,7 +292,7 @@ Result<std::vector<uint8_t>> encode_float(const T* xyz, size_t nv, const uint32_
     std::vector<uint32_t> q(3 * nv);
     for (size_t i = 0; i < 3 * nv; ++i)
       q[i] = quantize(static_cast<double>(xyz[i]), frame.origin[i % 3], frame.step, frame.bits);
-    res.status = encode_impl(q.data(), nv, tris, nt, frame, res.value, report);
+    res.status = encode_impl(q.data(), nv, tris, nt, frame, res.value, report, nullptr, options.seam_context);
   } catch (const std::bad_alloc&) {
     res.status = make_status(Error::out_of_memory, "", 0, "out of memory");
   } catch (...) {
@@ -304,10 +318,10 @@ Result<std::vector<uint8_t>> encode(const double* xyz, size_t nv, const uint32_t
 }
 
 Result<std::vector<uint8_t>> encode_quantized(const uint32_t* q, size_t nv, const uint32_t* tris, size_t nt,
-                                              const Frame& frame, EncodeReport* report) {
+                                              const Frame& frame, EncodeReport* report, int seam_context) {
   Result<std::vector<uint8_t>> res;
   try {
-    res.status = encode_impl(q, nv, tris, nt, frame, res.value, report);
+    res.status = encode_impl(q, nv, tris, nt, frame, res.value, report, nullptr, seam_context);
   } catch (const std::bad_alloc&) {
     res.status = make_status(Error::out_of_memory, "", 0, "out of memory");
   } catch (...) {
@@ -349,7 +363,7 @@ Result<DecodedMesh> decode(const uint8_t* data, size_t size, const DecodeOptions
     const Section* ps = c.find(kSectionPositions);
     ClosedMesh mesh;
     res.status = read_connectivity(data + cs->offset, cs->size, cs->offset, options.limits, h.vertices,
-                                   h.triangles, mesh);
+                                   h.triangles, (h.flags & kFlagClersSeam) != 0, mesh);
     if (!res.ok()) return res;
     std::vector<uint32_t> q;
     const Section* is = c.find(kSectionIrregular);

@@ -25,10 +25,11 @@ enum SectionId : uint8_t {
 };
 const char* section_name(uint8_t id);
 
-// §3.3 Flags: bit 0 = the valence context of the irregular triangles (§7.3, format 1.2); the other bits are
-// reserved (unsupported_feature).
+// §3.3 Flags: bit 0 = the valence context of the irregular triangles (§7.3, format 1.2), bit 2 = the seam context
+// of the CLERS symbols (§6.5.2, format 1.3); the other bits are reserved (unsupported_feature).
 constexpr uint8_t kFlagLersValence = 0x01;
-constexpr uint8_t kKnownFlags = kFlagLersValence;
+constexpr uint8_t kFlagClersSeam = 0x04;
+constexpr uint8_t kKnownFlags = kFlagLersValence | kFlagClersSeam;
 
 // §3.3 The header fields.
 struct Header {

@@ -57,6 +57,37 @@ int64_t SpiraleReversi::open_edge_out_of(uint32_t c) {
   return -1;
 }
 
+// §6.5.2 Seam. From corner A_j of the top piece's triangle j, the fan of the gate's start vertex over glued edges:
+// first j itself and up to kSeamWalk triangles rotating across the edge opposite next(c), then up to kSeamWalk
+// rotating across the edge opposite prev(c) from j; each walk stops at an open edge or back at j. Seam is 1 if the
+// vertex of a visited triangle's corner next(c) or prev(c) is closed and has a triangle count other than 6.
+uint32_t SpiraleReversi::gate_start_seam() {
+  if (stack_.empty()) return 0;
+  const uint32_t c0 = 3 * stack_.back();
+  auto odd = [&](uint32_t c) {
+    const uint32_t r1 = find(rec_[corner_next(c)]), r2 = find(rec_[corner_prev(c)]);
+    return (id_[r1] >= 0 && count_[r1] != 6) || (id_[r2] >= 0 && count_[r2] != 6);
+  };
+  if (odd(c0)) return 1;
+  uint32_t c = c0;
+  for (uint32_t k = 0; k < kSeamWalk; ++k) {
+    const int32_t d = opp_[corner_next(c)];
+    if (d < 0) break;
+    c = corner_next(static_cast<uint32_t>(d));
+    if (c == c0) return 0;  // a closed fan: the walk saw every triangle
+    if (odd(c)) return 1;
+  }
+  c = c0;
+  for (uint32_t k = 0; k < kSeamWalk; ++k) {
+    const int32_t d = opp_[corner_prev(c)];
+    if (d < 0) break;
+    c = corner_prev(static_cast<uint32_t>(d));
+    if (c == c0) return 0;
+    if (odd(c)) return 1;
+  }
+  return 0;
+}
+
 // §6.4.8 Closing a vertex gives it the next id, counting down from the number of vertices, so that ids end up in
 // forward order of discovery (§6.6).
 bool SpiraleReversi::close_vertex(uint32_t record) {

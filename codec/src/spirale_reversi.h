@@ -33,6 +33,8 @@ class SpiraleReversi {
   uint32_t gate_start_count() {
     return stack_.empty() ? 0 : count_[find(rec_[3 * stack_.back()])];
   }
+  // §6.5.2 Seam: 1 if a closed vertex of the decoded fan of the gate's start vertex has a valence other than 6.
+  uint32_t gate_start_seam();
 
   // §6.4.3-6.4.7 One step each; false (with error() set) when the operation is impossible.
   bool apply(uint32_t t, uint8_t symbol);

@@ -218,9 +218,14 @@ TEST(Hostile, HeaderFields) {
   };
   EXPECT_EQ(patched(0, 'X'), Error::bad_magic);
   EXPECT_EQ(patched(4, 2), Error::unsupported_version);
-  for (uint8_t flags : {2, 4, 0x80, 0xFF})  // Flags: only bit 0 (§3.3, the valence context) is defined
-    EXPECT_EQ(patched(6, flags), Error::unsupported_feature) << int{flags};
-  EXPECT_EQ(patched(6, 1), Error::ok);  // a general-path stream with bit 0: nothing to apply it to
+  // Flags: bits 0 (the LERS valence context, §7.3) and 2 (the CLERS seam context, §6.5.2) are defined (§3.3).
+  const uint8_t seam = s[6] & 0x04;
+  for (uint8_t flags : {2, 8, 0x80, 0xFA})
+    EXPECT_EQ(patched(6, static_cast<uint8_t>(flags | seam)), Error::unsupported_feature) << int{flags};
+  EXPECT_EQ(patched(6, static_cast<uint8_t>(1 | seam)), Error::ok);  // a general-path stream with bit 0: nothing to apply it to
+  // Bit 2 toggled: the symbols decode with other contexts; whatever comes out, it is checked (§6.8), not trusted.
+  const Error toggled = patched(6, static_cast<uint8_t>(seam ^ 0x04));
+  EXPECT_NE(toggled, Error::internal);
   EXPECT_EQ(patched(7, 7), Error::bad_header);           // Position_Bits
   EXPECT_EQ(patched(7, 21), Error::bad_header);
   std::vector<uint8_t> t = s;

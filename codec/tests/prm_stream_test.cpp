@@ -73,7 +73,8 @@ TEST(PrmStream, PillowRoundTripsAtEveryHeightDepth) {
     EXPECT_EQ(rep.patch_vertices, m.nv());  // every vertex is on a patch
     EXPECT_GT(rep.irregular_bytes, 0u);
     EXPECT_EQ(rep.predicted_patches, depth == 7 ? 2u : 0u);
-    EXPECT_EQ(enc.value[5], kFormatMinorPredicted);  // §3.2: the valence context makes every PRM stream 1.2
+    // §3.2: the valence context makes every PRM stream 1.2, the seam context (the encoder's choice) 1.3.
+    EXPECT_EQ(enc.value[5], (enc.value[6] & 0x04) ? kFormatMinorSeam : kFormatMinorPredicted);
     expect_round_trip(m, enc.value, rep);
     best = std::min(best, enc.value.size());
   }

@@ -14,9 +14,10 @@ namespace prm::codec::test {
 // Encodes `m` with `bits`, decodes, and checks: the triangles are the input's (through the report's vertex and
 // triangle order and corner rotation), and the positions are the quantized input exactly.
 inline ::testing::AssertionResult round_trip(const TestMesh& m, int bits = 12, EncodeReport* report_out = nullptr,
-                                             std::vector<uint8_t>* stream_out = nullptr) {
+                                             std::vector<uint8_t>* stream_out = nullptr, int seam_context = -1) {
   EncodeOptions opt;
   opt.position_bits = bits;
+  opt.seam_context = seam_context;
   EncodeReport rep;
   auto enc = encode(m.xyz.data(), m.num_vertices(), m.triangles.data(), m.num_triangles(), opt, &rep);
   if (!enc.ok())

@@ -32,7 +32,8 @@ namespace prm::codec {
 constexpr uint8_t kFormatMajor = 1;
 constexpr uint8_t kFormatMinor = 0;     // general-path streams (§3.2)
 constexpr uint8_t kFormatMinorPrm = 1;        // PRM streams of format 1.1 (§3.2): read, no longer written
-constexpr uint8_t kFormatMinorPredicted = 2;  // PRM streams written now: format 1.2 (§3.2, §7.3, §9.7)
+constexpr uint8_t kFormatMinorPredicted = 2;  // PRM streams without the seam context: format 1.2 (§3.2, §7.3, §9.7)
+constexpr uint8_t kFormatMinorSeam = 3;       // streams with the CLERS seam context: format 1.3 (§3.2, §6.5.2)
 
 enum class Error : uint8_t {
   ok = 0,
@@ -95,6 +96,9 @@ inline double dequantize(uint32_t q, double origin, double step) { return origin
 
 struct EncodeOptions {
   int position_bits = 12;  // 8..20; ignored by encode_quantized (the frame gives the bits)
+  // §6.5.2 The CLERS seam context (format 1.3): -1 the smaller connectivity section of with and without, 0 never
+  // (a 1.0 stream), 1 always. encode_quantized takes -1.
+  int seam_context = -1;
 };
 
 // What encode() did; sizes in bytes.
@@ -136,9 +140,10 @@ Result<std::vector<uint8_t>> encode(const double* xyz, size_t num_vertices, cons
                                     EncodeReport* report = nullptr);
 // Pre-quantized positions q[3 * num_vertices], each in [0, 2^frame.bits - 1], in the caller's frame (the PRM
 // remesher's frame, so that lattice points stay exact).
+// seam_context: as EncodeOptions::seam_context.
 Result<std::vector<uint8_t>> encode_quantized(const uint32_t* q, size_t num_vertices, const uint32_t* triangles,
                                               size_t num_triangles, const Frame& frame,
-                                              EncodeReport* report = nullptr);
+                                              EncodeReport* report = nullptr, int seam_context = -1);
 
 // §9.4 Height_Depth 7: the heights by linear prediction (§9.7).
 constexpr int kLinearPredictionDepth = 7;
@@ -165,6 +170,8 @@ struct PrmOptions {
   double height_tolerance = 0;
   double height_lambda = 0;
   const double* unrounded = nullptr;
+  // §6.5.2 The CLERS seam context (format 1.3): -1 the smaller, 0 never (a 1.2 stream), 1 always.
+  int seam_context = -1;
 };
 
 // Encodes a PRM: the encoder checks which triangles are regular (§7.1: three lattice neighbours forming a grid
