@@ -140,16 +140,18 @@ Status encode_impl(const uint32_t* q, size_t nv, const uint32_t* tris, size_t nt
   h.vertices = real;
   h.triangles = static_cast<uint32_t>(nt);
   std::vector<uint8_t> conn, pos, irregular_payload, patch_payload;
-  // §6.5.2 The seam context (Flags bit 2, format 1.3): with it, without it, or the smaller of the two.
-  if (seam_context != 0) PRM_TRY(write_connectivity(plan, true, conn));
-  if (seam_context != 1) {
-    std::vector<uint8_t> plain;
-    PRM_TRY(write_connectivity(plan, false, plain));
-    if (seam_context == 0 || plain.size() <= conn.size()) conn = std::move(plain);
-    else h.flags |= kFlagClersSeam;
-  } else {
-    h.flags |= kFlagClersSeam;
+  // §6.5.2 The seam context (Flags bit 2, format 1.3): with it, without it, or the smaller of the two (ties: without).
+  bool seam = seam_context == 1;
+  PRM_TRY(write_connectivity(plan, seam, conn));
+  if (seam_context == -1) {
+    std::vector<uint8_t> with;
+    PRM_TRY(write_connectivity(plan, true, with));
+    if (with.size() < conn.size()) {
+      conn = std::move(with);
+      seam = true;
+    }
   }
+  if (seam) h.flags |= kFlagClersSeam;
   // §7-§9 A PRM: regular triangles found by the encoder's own check; none: the general path.
   std::vector<int8_t> tri_axis;
   std::vector<uint8_t> known;

@@ -68,24 +68,21 @@ uint32_t SpiraleReversi::gate_start_seam() {
     const uint32_t r1 = find(rec_[corner_next(c)]), r2 = find(rec_[corner_prev(c)]);
     return (id_[r1] >= 0 && count_[r1] != 6) || (id_[r2] >= 0 && count_[r2] != 6);
   };
+  // One side: 1 odd vertex found, 0 the fan closed (every triangle seen), 2 an open edge or the bound.
+  auto walk = [&](uint32_t (*turn)(uint32_t)) {
+    uint32_t c = c0;
+    for (uint32_t k = 0; k < kSeamWalk; ++k) {
+      const int32_t d = opp_[turn(c)];
+      if (d < 0) break;
+      c = turn(static_cast<uint32_t>(d));
+      if (c == c0) return 0u;
+      if (odd(c)) return 1u;
+    }
+    return 2u;
+  };
   if (odd(c0)) return 1;
-  uint32_t c = c0;
-  for (uint32_t k = 0; k < kSeamWalk; ++k) {
-    const int32_t d = opp_[corner_next(c)];
-    if (d < 0) break;
-    c = corner_next(static_cast<uint32_t>(d));
-    if (c == c0) return 0;  // a closed fan: the walk saw every triangle
-    if (odd(c)) return 1;
-  }
-  c = c0;
-  for (uint32_t k = 0; k < kSeamWalk; ++k) {
-    const int32_t d = opp_[corner_prev(c)];
-    if (d < 0) break;
-    c = corner_prev(static_cast<uint32_t>(d));
-    if (c == c0) return 0;
-    if (odd(c)) return 1;
-  }
-  return 0;
+  const uint32_t forward = walk(corner_next);
+  return forward == 2 ? walk(corner_prev) & 1u : forward;
 }
 
 // §6.4.8 Closing a vertex gives it the next id, counting down from the number of vertices, so that ids end up in
