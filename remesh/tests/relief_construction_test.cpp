@@ -291,7 +291,7 @@ TEST(ReliefConstruction, ResultDoesNotDependOnThreads) {
 
 TEST(ReliefConstruction, SmallerTauGivesShorterBoundariesAndFewerReliefs) {
   // Paper §2.1, Fig. 2: boundaries get smoother as tau decreases; far below the naive layout at 0.2.
-  // (Between 0.2 and 0.1 both flatten out: docs/reliefs.md has every mesh.)
+  // (Between 0.2 and 0.1 both flatten out: bench/README.md, "Reliefs", has every mesh.)
   const Mesh m = load("venus.off");
   const ReliefLayout N = build_reliefs(m, naive());
   double prev_length = HUGE_VAL;
@@ -318,7 +318,7 @@ TEST(ReliefConstruction, SmallerTauGivesShorterBoundariesAndFewerReliefs) {
 }
 
 TEST(ReliefConstruction, FastMarchingGivesShorterBoundariesThanDijkstra) {
-  // The choice of the default (docs/reliefs.md): less metrication error, smoother boundaries.
+  // The choice of the default (ReliefOptions::geodesic): less metrication error, smoother boundaries.
   for (const char* name : {"horse.ply", "venus.off", "feline.off"}) {
     const Mesh m = load(name);
     ReliefOptions d;
