@@ -15,6 +15,7 @@
 #include "prm/mesh_repair.h"
 #include "prm/mesh_validate.h"
 #include "prm/remesh/reliefs.h"
+#include "prm/surface_sampler.h"
 #include "prm/vec3.h"
 #include "test_meshes.h"
 
@@ -92,8 +93,8 @@ void check_layout(const Mesh& input, const ReliefLayout& L, const ReliefOptions&
   // merged reliefs' size limit each.
   const double min_facing = o.naive ? 1 / std::sqrt(3.0) : o.tau;
   const double merged_facing = o.naive || o.min_relief_triangles <= 0 ? min_facing : std::min(o.merge_facing, o.tau);
-  double input_area = 0, below_tau_area = 0;
-  for (const Tri& t : input.triangles) input_area += face_area(input, t);
+  const double input_area = surface_area(input);
+  double below_tau_area = 0;
   std::vector<double> piece_area(input.triangles.size(), 0.0);
   size_t not_facing = 0, outside = 0, flipped = 0, needles = 0;
   double worst_quality_ratio = 1;
