@@ -104,6 +104,8 @@ Status encode_impl(const uint32_t* q, size_t nv, const uint32_t* tris, size_t nt
       return make_status(Error::invalid_argument, "9.7.2", 0, "overlap depth must be 0..6 (or -1: 3)");
     if (!(prm->height_tolerance >= 0 && prm->height_tolerance <= 16) || !(prm->height_lambda >= 0 && prm->height_lambda <= 1e6))
       return make_status(Error::invalid_argument, "9.7", 0, "height tolerance must be 0..16 steps and lambda 0..1e6");
+    if (prm->height_sweeps < 0 || prm->height_sweeps > 16)
+      return make_status(Error::invalid_argument, "9.7", 0, "height sweeps must be 0..16");
     if (prm->unrounded && prm->height_tolerance >= 0.5 && prm->height_lambda > 0)
       for (size_t i = 0; i < 3 * nv; ++i)
         if (!(std::fabs(prm->unrounded[i] - static_cast<double>(q[i])) <= 1.0))
@@ -181,6 +183,7 @@ Status encode_impl(const uint32_t* q, size_t nv, const uint32_t* tris, size_t nt
       freedom.exact = &exact;
       freedom.tolerance = prm->height_tolerance;
       freedom.lambda = prm->height_lambda;
+      freedom.sweeps = prm->height_sweeps;
     }
     std::vector<uint32_t> coded_positions;
     // §9.4 The height coding: the caller's, or the one giving the smallest section: every difference depth, then

@@ -300,6 +300,21 @@ inline bool lp_neighbour_mean(const LpNeighbours& nb, uint32_t l, const std::vec
   return true;
 }
 
+// §9.7.4 The activity context of a height: from the residuals already coded at the activity offsets (8: none).
+inline int lp_activity(const std::array<uint32_t, kLpOffsets>& id, const std::vector<int64_t>& res,
+                       const std::vector<uint8_t>& coded) {
+  int64_t sum = 0, count = 0;
+  for (int t : kLpActivityTap)
+    if (id[t] != LpRaster::kNone && coded[id[t]]) {
+      const int64_t r = res[id[t]];
+      sum += r < 0 ? -r : r;
+      ++count;
+    }
+  if (count == 0) return 8;
+  const uint64_t x = static_cast<uint64_t>(3 * sum / count);
+  return x == 0 ? 0 : std::min(int_class(x) + 1, 7);  // the bit length of x, at most 7
+}
+
 // The encoder's choice of the height it codes: the given one (lossless).
 struct LpKeepHeight {
   int64_t operator()(uint32_t, int64_t, int64_t given, const SignedIntModel&) const { return given; }
@@ -336,18 +351,7 @@ bool code_lp_heights(const Level& level, const LpRaster& raster, const LpTable& 
       if (lp_neighbour_mean(*nb, l, h, coded, mean)) pred = mean;
     }
     pred = pred < lo ? lo : pred > hi ? hi : pred;
-    int64_t sum = 0, count = 0;
-    for (int t : kLpActivityTap)
-      if (id[t] != LpRaster::kNone && coded[id[t]]) {
-        const int64_t r = res[id[t]];
-        sum += r < 0 ? -r : r;
-        ++count;
-      }
-    int activity = 8;
-    if (count > 0) {
-      const uint64_t x = static_cast<uint64_t>(3 * sum / count);
-      activity = x == 0 ? 0 : std::min(int_class(x) + 1, 7);  // the bit length of x, at most 7
-    }
+    const int activity = lp_activity(id, res, coded);
     const int group = s == kLpNoSet ? kLpGroups - 1 : lp_group(table.taps[s]);
     int64_t r;
     SignedIntModel& model = m.residual[group][activity];

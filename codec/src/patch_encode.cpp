@@ -6,6 +6,7 @@
 #include <optional>
 #include <string>
 
+#include "height_choice.h"
 #include "height_prediction_fit.h"
 #include "patch_shared.h"
 #include "patches.h"
@@ -47,6 +48,37 @@ bool use_prediction(uint32_t shared, uint32_t vertices, bool always) {
   return always || uint64_t{shared} * 64 <= vertices;
 }
 
+// Appendix B.2 The refinement's records of one patch's heights, as code_lp_heights coded them (res, coded: its
+// residuals and coded flags). window(l, given): the height's HeightWindow.
+template <typename Window>
+void record_heights(const Level& level, const LpRaster& raster, const LpTable& table, const std::vector<uint8_t>& placed,
+                    const std::vector<uint32_t>& global, const std::vector<int64_t>& res,
+                    const std::vector<uint8_t>& coded, int pair, int64_t lo, int64_t hi, const Window& window,
+                    const std::vector<uint32_t>& cq, std::vector<ChosenHeight>& out) {
+  std::array<uint32_t, kLpOffsets> id;
+  for (uint32_t l : raster.order()) {
+    if (placed[l]) continue;
+    const int s = table.first_set[raster.taps(level.coord[l][0], level.coord[l][1], id)];
+    ChosenHeight c;
+    c.vertex = global[l];
+    c.pair = static_cast<uint8_t>(pair);
+    c.lo = lo;
+    c.hi = hi;
+    const int group = s == kLpNoSet ? kLpGroups - 1 : lp_group(table.taps[s]);
+    c.context = static_cast<uint8_t>(group * kLpActivities + lp_activity(id, res, coded));
+    if (s != kLpNoSet) {
+      c.taps = static_cast<uint8_t>(table.taps[s]);
+      for (int k = 0; k < table.taps[s]; ++k) {
+        c.tap_vertex[static_cast<size_t>(k)] = global[id[table.tap[s][k]]];
+        c.weight[static_cast<size_t>(k)] = table.weight[s][k];
+      }
+    }
+    c.window = window(l, static_cast<int64_t>(cq[3 * size_t{c.vertex} + static_cast<size_t>(pair)]));
+    c.window.free = c.window.free && c.taps > 0;  // a height predicted without taps is held
+    out.push_back(c);
+  }
+}
+
 }  // namespace
 
 void classify_triangles(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, int64_t grid,
@@ -70,11 +102,21 @@ void classify_triangles(const ClosedMesh& mesh, const std::vector<uint32_t>& cq,
     if (demote[t]) tri_axis[t] = -1;
 }
 
-Status write_patches(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, int bits, int64_t grid,
+namespace {
+
+// §9.7.2 A predictor table and which of its sets carry their weights.
+struct FittedTable {
+  LpTable table;
+  std::array<bool, kLpSets> fitted{};
+};
+
+// write_patches, with the predictor table `given` instead of one fitted to cq (the refinement's heights are coded
+// with the table they were refined for).
+Status write_section(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, int bits, int64_t grid,
                      const std::array<uint32_t, 3>& box_lo, const std::array<uint32_t, 3>& box_hi,
                      const std::vector<int8_t>& tri_axis, int depth, int overlap_depth, bool predict_every_patch,
                      std::vector<uint8_t>& payload, std::vector<uint8_t>& known, PatchStats* stats,
-                     const HeightFreedom* freedom, std::vector<uint32_t>* chosen) {
+                     const HeightFreedom* freedom, std::vector<uint32_t>* chosen, const FittedTable* given) {
   const uint32_t nt = mesh.num_triangles();
   std::vector<uint8_t> cls = dummy_triangles(mesh);
   for (uint32_t t = 0; t < nt; ++t)
@@ -156,9 +198,13 @@ Status write_patches(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, in
   std::optional<LpNeighbours> nb;
   if (predicted) nb.emplace(mesh, known, cw.data(), local, global);
   // §9.7.2 The predictor table, fitted to the heights the patches will code (same placement order as below).
-  LpTable table;
-  std::array<bool, kLpSets> fitted{};
-  if (predicted) {
+  FittedTable own;
+  LpTable& table = own.table;
+  std::array<bool, kLpSets>& fitted = own.fitted;
+  if (predicted && given) {
+    own = *given;
+    code_lp_table(table, fitted, models->lp, direct, value);
+  } else if (predicted) {
     std::vector<LpSample> samples;
     std::array<uint32_t, kLpOffsets> id;
     for (size_t p = 0; p < ps.size(); ++p) {
@@ -179,6 +225,7 @@ Status write_patches(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, in
     code_lp_table(table, fitted, models->lp, direct, value);
     known.assign(mesh.num_vertices, 0);
   }
+  std::vector<ChosenHeight> refine;
   std::array<int64_t, 2> previous{0, 0};
   uint32_t patch_vertices = 0, predicted_patches = 0;
   for (size_t p = 0; p < ps.size(); ++p) {
@@ -203,17 +250,18 @@ Status write_patches(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, in
         // Spec Appendix B. The window around the exact height, inside the box (a height on the box's face stays
         // there: the box remains tight), always holding the rounded height; the choice minimises the squared distance
         // to the exact height plus lambda times the residual's bits under the model's current state.
-        const double tol = freedom->tolerance;
         const double lambda = freedom->lambda;
+        auto window = [&](uint32_t l, int64_t given) {
+          return height_window(given, (*freedom->exact)[3 * size_t{global[l]} + static_cast<size_t>(pair)],
+                               freedom->tolerance, lo, hi, pairs_of[global[l]] == 1u << pair);
+        };
         auto choose = [&](uint32_t l, int64_t pred, int64_t given, const SignedIntModel& model) -> int64_t {
-          if (given <= lo || given >= hi || pairs_of[global[l]] != 1u << pair) return given;
-          const double x = (*freedom->exact)[3 * size_t{global[l]} + static_cast<size_t>(pair)];
-          const int64_t a = std::min(given, std::max(lo + 1, static_cast<int64_t>(std::ceil(x - tol))));
-          const int64_t b = std::max(given, std::min(hi - 1, static_cast<int64_t>(std::floor(x + tol))));
+          const HeightWindow w = window(l, given);
+          if (!w.free) return given;
           int64_t best = given;
           double best_cost = 1e300;
-          for (int64_t q = a; q <= b; ++q) {
-            const double d = static_cast<double>(q) - x;
+          for (int64_t q = w.lo; q <= w.hi; ++q) {
+            const double d = static_cast<double>(q) - w.exact;
             const double cost = d * d + lambda * signed_cost_bits(model, q - pred);
             if (cost < best_cost) best_cost = cost, best = q;
           }
@@ -221,6 +269,8 @@ Status write_patches(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, in
         };
         in_range = code_lp_heights(level, raster, table, models->lp, bits, lo, hi, placed, h, res, scratch, value,
                                    &*nb, choose);
+        if (in_range && freedom->sweeps > 0)
+          record_heights(level, raster, table, placed, global, res, scratch, pair, lo, hi, window, cq, refine);
         for (uint32_t l = 0; l < level.size(); ++l)
           cw_copy[3 * size_t{global[l]} + static_cast<size_t>(pair)] = static_cast<uint32_t>(h[l]);
       } else {
@@ -245,6 +295,15 @@ Status write_patches(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, in
     }
   }
   payload = rc.finish();
+  // Spec Appendix B.2: the chosen heights refined together, then coded as they are.
+  if (free_heights && freedom->sweeps > 0 && !refine.empty()) {
+    std::vector<uint32_t> q = cw;
+    refine_heights(refine, ResidualCosts::of(models->lp), freedom->lambda, freedom->sweeps, q);
+    PRM_TRY(write_section(mesh, q, bits, grid, box_lo, box_hi, tri_axis, depth, overlap_depth, predict_every_patch,
+                          payload, known, stats, nullptr, nullptr, &own));
+    if (chosen) *chosen = q;
+    return ok_status();
+  }
   if (chosen) *chosen = cw;
   if (stats) {
     stats->patches = static_cast<uint32_t>(ps.size());
@@ -252,6 +311,17 @@ Status write_patches(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, in
     stats->predicted_patches = predicted_patches;
   }
   return ok_status();
+}
+
+}  // namespace
+
+Status write_patches(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, int bits, int64_t grid,
+                     const std::array<uint32_t, 3>& box_lo, const std::array<uint32_t, 3>& box_hi,
+                     const std::vector<int8_t>& tri_axis, int depth, int overlap_depth, bool predict_every_patch,
+                     std::vector<uint8_t>& payload, std::vector<uint8_t>& known, PatchStats* stats,
+                     const HeightFreedom* freedom, std::vector<uint32_t>* chosen) {
+  return write_section(mesh, cq, bits, grid, box_lo, box_hi, tri_axis, depth, overlap_depth, predict_every_patch,
+                       payload, known, stats, freedom, chosen, nullptr);
 }
 
 }  // namespace prm::codec

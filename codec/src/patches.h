@@ -37,6 +37,7 @@ struct HeightFreedom {
   const std::vector<double>* exact = nullptr;  // 3 per closed-mesh vertex, in quantization steps
   double tolerance = 0;                        // in quantization steps; below 0.5 nothing changes
   double lambda = 0;                           // squared steps per bit; 0: nothing changes
+  int sweeps = 0;                              // Appendix B.2 refinement sweeps (height_choice.h); 0: greedy only
 };
 Status write_patches(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, int bits, int64_t grid,
                      const std::array<uint32_t, 3>& box_lo, const std::array<uint32_t, 3>& box_hi,

@@ -42,6 +42,7 @@ PackResult pack_at(const Mesh& source, const MetroReference& reference, const Pa
     po.height_tolerance = kHeightTolerance;
     po.height_lambda = options.height_lambda;
   }
+  po.height_sweeps = options.height_sweeps;
   // The stream of a candidate with options o, and the error of its decoded mesh.
   auto encode_and_measure = [&](const remesh::PrmMesh& prm, const codec::PrmOptions& o, codec::EncodeReport* report,
                                 std::vector<uint8_t>* stream) {
@@ -91,6 +92,7 @@ PackResult pack_at(const Mesh& source, const MetroReference& reference, const Pa
       codec::PrmOptions o;
       o.height_tolerance = kHeightTolerance;
       o.height_lambda = kHeightLambdas[mid];
+      o.height_sweeps = options.height_sweeps;
       // Only linear prediction takes the freedom; the difference depths would code the same heights as above.
       if (out.report.height_depth == codec::kLinearPredictionDepth) {
         o.height_depth = out.report.height_depth;

@@ -18,7 +18,7 @@ void add_pack_command(CLI::App& root) {
   struct Options {
     std::string input, output, keep_prm;
     double target = 0, grid = 0, grid_fraction = 0, tau = 0.2, lambda = 0, step_scale = 0;
-    int bits = 0;
+    int bits = 0, sweeps = 4;
     size_t samples = 0;
     bool json = false, no_fit = false, round_heights = false;
   };
@@ -52,9 +52,13 @@ void add_pack_command(CLI::App& root) {
                 "Keep the lattice vertices on the input surface (no least-squares heights; for comparison)");
   cmd->add_option("--height-lambda", opt->lambda,
                   "Rate-distortion weight of the coded heights (squared quantization steps per bit; each height may "
-                  "move up to 1.5 steps; spec Appendix B). Default: with --target-error, the largest of ten values from "
-                  "0.03 to 1 that still meets the target (bisection); otherwise 0 (heights rounded)")
+                  "move up to 1.5 steps; spec Appendix B). Default: with --target-error, the largest of sixteen values "
+                  "from 0.03 to 1 that still meets the target (bisection); otherwise 0 (heights rounded)")
       ->check(CLI::Range(0.0, 100.0));
+  cmd->add_option("--height-sweeps", opt->sweeps,
+                  "Sweeps of the refinement of that choice over all heights together, each height also weighing the "
+                  "residuals it predicts (spec Appendix B.2; default 4; 0: each height alone, in coding order)")
+      ->check(CLI::Range(0, 16));
   cmd->add_flag("--round-heights", opt->round_heights,
                 "Round every height to the nearest step (no rate-distortion choice; for comparison)");
   cmd->add_flag("--json", opt->json, "Print the report as one JSON object");
@@ -73,6 +77,7 @@ void add_pack_command(CLI::App& root) {
     po.fit_heights = !opt->no_fit;
     po.height_lambda = opt->lambda;
     po.optimize_heights = !opt->round_heights;
+    po.height_sweeps = opt->sweeps;
     pipeline::PackResult r;
     try {
       r = pipeline::pack(input, po);
@@ -109,6 +114,7 @@ void add_pack_command(CLI::App& root) {
           {"regular_share", s.faces ? static_cast<double>(s.regular_faces) / s.faces : 0.0},
           {"regular_patches", rep.regular_patches},
           {"height_lambda", r.codec_options.height_lambda},
+          {"height_sweeps", r.codec_options.height_lambda > 0 ? r.codec_options.height_sweeps : 0},
           {"rms_error", r.remesh.error.rms},
           {"max_error", r.remesh.error.max},
           {"bytes",

@@ -170,6 +170,10 @@ struct PrmOptions {
   double height_tolerance = 0;
   double height_lambda = 0;
   const double* unrounded = nullptr;
+  // With that freedom, the heights chosen one by one are then refined together by this many sweeps of coordinate
+  // descent, in which a height also weighs the residuals of the later heights it predicts (spec Appendix B.2),
+  // 0..16; 0: each height alone, in coding order.
+  int height_sweeps = 4;
   // §6.5.2 The CLERS seam context (format 1.3): -1 the smaller, 0 never (a 1.2 stream), 1 always.
   int seam_context = -1;
 };
