@@ -89,7 +89,8 @@ int64_t bumpy_top(int i, int j, const void*) {
 }
 int64_t bumpy_bottom(int i, int j, const void*) { return 1000 - std::lround(40 * std::cos(0.25 * i + 0.1 * j)); }
 
-std::vector<uint8_t> pillow_stream(int r, int perturb, int depth, uint32_t seed = 1, int seam_context = 0) {
+std::vector<uint8_t> pillow_stream(int r, int perturb, int depth, uint32_t seed = 1, int seam_context = 0,
+                                   bool patch_contexts = false) {
   std::vector<std::array<int, 2>> moved;
   uint32_t x = seed;
   for (int k = 0; k < perturb; ++k) {  // a small LCG: the same points on every platform
@@ -108,6 +109,7 @@ std::vector<uint8_t> pillow_stream(int r, int perturb, int depth, uint32_t seed 
   o.grid = 8;
   o.height_depth = depth;
   o.seam_context = seam_context;
+  o.patch_contexts = patch_contexts;  // the vectors before 1.4 were written without format 1.4's patch contexts
   return encode_prm(m.q.data(), m.nv(), m.tris.data(), m.nt(), f, o).value;
 }
 
@@ -125,7 +127,7 @@ void fix_crc(std::vector<uint8_t>& s) {  // CRC-32 (spec 3.5), bitwise
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: %s OUT_DIR [--only-prm-1.1 | --only-1.3]\n", argv[0]);
+    std::fprintf(stderr, "usage: %s OUT_DIR [--only-prm-1.1 | --only-1.3 | --only-1.4]\n", argv[0]);
     return 1;
   }
   const fs::path dir = argv[1];
@@ -134,8 +136,20 @@ int main(int argc, char** argv) {
           "PRM stream of format 1.1: LERS without valence context, difference patches", "\"7.2\", \"8.3\", \"9.3\"");
     return 0;
   }
-  // Format 1.3 (§6.5.2 the seam context), added without touching the older vectors.
+  // Each format's vectors were added without touching the older ones; --only-1.N writes only those of 1.N.
   const bool only_13 = argc > 2 && std::string(argv[2]) == "--only-1.3";
+  const bool only_14 = argc > 2 && std::string(argv[2]) == "--only-1.4";
+  // Format 1.4 (§8.4.1 base references, §9.7.4 sign contexts).
+  if (!only_13) {
+    valid(dir, "016-prm-1.4-patch-contexts", pillow_stream(12, 40, 7, 7, -1, true), "1.4",
+          "PRM stream with the patch contexts (Flags bit 3): bases from their references, sign contexts, linear "
+          "prediction, many off-lattice vertices",
+          "\"3.3\", \"8.4.1\", \"9.7.4\"");
+    valid(dir, "017-prm-1.4-patch-contexts-depth3", pillow_stream(12, 40, 3, 7, -1, true), "1.4",
+          "the patch contexts with difference patches of depth 3: bases from their references", "\"8.4.1\", \"9.3\"");
+  }
+  if (only_14) return 0;
+  // Format 1.3 (§6.5.2 the seam context).
   valid(dir, "006-general-1.3-seam-context",
         general(concat({sphere_with_holes(2, 3), plate_with_holes(2, 1), icosphere(2)}), 12, 1), "1.3",
         "the CLERS seam context (Flags bit 2) on a general-path stream: holes, a handle, irregular and regular vertices",

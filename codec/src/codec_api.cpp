@@ -169,6 +169,7 @@ Status encode_impl(const uint32_t* q, size_t nv, const uint32_t* tris, size_t nt
     const std::vector<uint8_t> dummy = dummy_triangles(mesh);
     for (uint32_t t = 0; t < mesh.num_triangles(); ++t) irregular[t] = dummy[t] != kDummyTriangle && tri_axis[t] < 0;
     h.flags |= kFlagLersValence;  // §7.3 the valence context
+    if (prm->patch_contexts) h.flags |= kFlagPatchContexts;  // §8.4.1, §9.7.4 (format 1.4)
     write_irregular_triangles(mesh, irregular, true, irregular_payload);
     // The encoder's freedom in the heights (spec Appendix B, PrmOptions::height_lambda), in canonical vertex order.
     std::vector<double> exact;
@@ -194,7 +195,7 @@ Status encode_impl(const uint32_t* q, size_t nv, const uint32_t* tris, size_t nt
       PatchStats st;
       const bool free = freedom.exact && d == kHeightDepthPredicted;
       PRM_TRY(write_patches(mesh, cq, frame.bits, prm->grid, h.bbox_min, h.bbox_max, tri_axis, d, overlap,
-                            prm->predict_every_patch, payload, k, &st, free ? &freedom : nullptr,
+                            prm->predict_every_patch, prm->patch_contexts, payload, k, &st, free ? &freedom : nullptr,
                             free ? &chosen : nullptr));
       if (depth_used < 0 || payload.size() < patch_payload.size()) {
         coded_positions = std::move(chosen);
@@ -220,7 +221,8 @@ Status encode_impl(const uint32_t* q, size_t nv, const uint32_t* tris, size_t nt
       std::vector<uint8_t> payload, k;
       PatchStats st;
       PRM_TRY(write_patches(mesh, coded_positions, frame.bits, prm->grid, h.bbox_min, h.bbox_max, tri_axis,
-                            kHeightDepthPredicted, overlap_used, prm->predict_every_patch, payload, k, &st));
+                            kHeightDepthPredicted, overlap_used, prm->predict_every_patch, prm->patch_contexts, payload,
+                            k, &st));
       if (payload.size() < patch_payload.size()) {
         patch_payload = std::move(payload);
         known = std::move(k);
@@ -234,6 +236,7 @@ Status encode_impl(const uint32_t* q, size_t nv, const uint32_t* tris, size_t nt
     PRM_TRY(write_positions(mesh, cq, h.bbox_min, h.bbox_max, pos));
   }
   if (h.flags & kFlagClersSeam) h.version_minor = kFormatMinorSeam;  // §3.2 1.3
+  if (h.flags & kFlagPatchContexts) h.version_minor = kFormatMinorPatchContexts;  // §3.2 1.4
   size_t header_bytes = 0;
   if (regular > 0)
     out = write_container(h,
@@ -379,7 +382,7 @@ Result<DecodedMesh> decode(const uint8_t* data, size_t size, const DecodeOptions
                                             (h.flags & kFlagLersValence) != 0, cls);
       if (!res.ok()) return res;
       res.status = read_patches(data + pts->offset, pts->size, pts->offset, mesh, h.frame.bits, h.bbox_min,
-                                h.bbox_max, cls, q, known);
+                                h.bbox_max, (h.flags & kFlagPatchContexts) != 0, cls, q, known);
       if (!res.ok()) return res;
       res.status = read_positions(data + ps->offset, ps->size, ps->offset, mesh, h.bbox_min, h.bbox_max, q, &known);
     } else {

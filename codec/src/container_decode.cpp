@@ -67,7 +67,7 @@ Status read_container(const uint8_t* data, size_t size, Container& out) {
   out.header_bytes = body.offset();
   if ((h.flags & ~kKnownFlags) != 0)
     return make_status(Error::unsupported_feature, "3.3", 6,
-                       "Flags " + std::to_string(h.flags) + " (only bits 0 and 2 are defined)");
+                       "Flags " + std::to_string(h.flags) + " (only bits 0, 2 and 3 are defined)");
   if (h.frame.bits < kMinPositionBits || h.frame.bits > kMaxPositionBits)
     return make_status(Error::bad_header, "3.3", 7, "Position_Bits " + std::to_string(h.frame.bits) + " not in 8..20");
   for (int k = 0; k < 3; ++k)

@@ -8,14 +8,19 @@
 
 namespace prm::codec {
 
+static_assert(kLpGroups == 7 && kLpActivities == 9 && kLpSignContexts == 6, "residual_context() is out of date");
+
 ResidualCosts ResidualCosts::of(const LpModels& models) {
   ResidualCosts c;
-  c.table.resize(kLpGroups * kLpActivities);
+  c.table.resize(kResidualContexts);
   for (int g = 0; g < kLpGroups; ++g)
     for (int a = 0; a < kLpActivities; ++a)
-      for (int r = -kCostRange; r <= kCostRange; ++r)
-        c.table[static_cast<size_t>(g * kLpActivities + a)][static_cast<size_t>(r + kCostRange)] =
-            signed_cost_bits(models.residual[g][a], r);
+      for (int s = 0; s < kLpSignContexts; ++s) {
+        const BitModel& sign = models.sign_context ? models.sign[g][s] : models.residual[g][a].sign;
+        for (int r = -kCostRange; r <= kCostRange; ++r)
+          c.table[static_cast<size_t>(residual_context(g, a, s))][static_cast<size_t>(r + kCostRange)] =
+              signed_cost_bits(models.residual[g][a], r, sign);
+      }
   return c;
 }
 

@@ -46,12 +46,17 @@ struct ChosenHeight {
   uint32_t vertex = 0;   // closed-mesh vertex
   uint8_t pair = 0;      // the coordinate that is its height
   uint8_t taps = 0;      // 0: predicted without a tap set (then never free)
-  uint8_t context = 0;   // its residual's context: group * kLpActivities + activity (§9.7.4)
+  uint16_t context = 0;  // its residual's context (§9.7.4): residual_context(group, activity, sign context)
   int64_t lo = 0, hi = 0;  // the clamp of its prediction: the bounding box (§9.7.4)
   HeightWindow window;
   std::array<uint32_t, 12> tap_vertex{};
   std::array<int32_t, 12> weight{};
 };
+
+// The index of a residual's context (§9.7.4): its model's group and activity, and its sign context
+// (kLpNoSignContext when the stream has none).
+inline int residual_context(int group, int activity, int sign) { return (group * 9 + activity) * 6 + sign; }
+constexpr int kResidualContexts = 7 * 9 * 6;
 
 // The bits of residual r in context c: tabulated for |r| <= kCostRange, beyond it the edge's cost plus two bits per
 // doubling (the Exp-Golomb binarization of §9.5).

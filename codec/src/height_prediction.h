@@ -80,10 +80,17 @@ constexpr int kLpNoSet = 255;
 // §9.7.4 The offsets whose residuals give the activity context: (-1, 0), (0, -1), (1, -1), (-2, 0), (-1, -1), (2, -1).
 constexpr int kLpActivityTap[6] = {2, 0, 1, 8, 4, 5};
 
+// §9.7.4 Sign contexts (Flags bit 3, format 1.4): how the plane through three neighbours predicts against the
+// prediction, five classes, and 5 where the three are not all there.
+constexpr int kLpSignContexts = 6;
+constexpr int kLpNoSignContext = 5;
+
 struct LpModels {
   BitModel method;  // §9.7.4 per patch: 1 = linear prediction, 0 = difference patches of Overlap_Depth
   SignedIntModel weight;
   SignedIntModel residual[kLpGroups][kLpActivities];
+  BitModel sign[kLpGroups][kLpSignContexts];  // §9.7.4 with Flags bit 3
+  bool sign_context = false;                  // the stream's Flags bit 3 (format 1.4)
 };
 
 // §9.7.2 The predictor table of a stream: which sets are enabled and their weights; first_set[mask] is the first
@@ -315,17 +322,27 @@ inline int lp_activity(const std::array<uint32_t, kLpOffsets>& id, const std::ve
   return x == 0 ? 0 : std::min(int_class(x) + 1, 7);  // the bit length of x, at most 7
 }
 
+// §9.7.4 The sign context of a height predicted `pred` (Flags bit 3): with P = h(-1, 0) + h(1, -1) - h(0, -1), the
+// plane through those three neighbours, and d = P - pred: 0 if d <= -2, 1 if d = -1, 2 if d = 0, 3 if d = 1, 4 if
+// d >= 2; kLpNoSignContext if one of the three is missing.
+inline int lp_sign_context(const std::array<uint32_t, kLpOffsets>& id, const std::vector<int64_t>& h, int64_t pred) {
+  if (id[0] == LpRaster::kNone || id[1] == LpRaster::kNone || id[2] == LpRaster::kNone) return kLpNoSignContext;
+  const int64_t d = h[id[2]] + h[id[1]] - h[id[0]] - pred;
+  return d <= -2 ? 0 : d >= 2 ? 4 : static_cast<int>(d + 2);
+}
+
 // The encoder's choice of the height it codes: the given one (lossless).
 struct LpKeepHeight {
-  int64_t operator()(uint32_t, int64_t, int64_t given, const SignedIntModel&) const { return given; }
+  int64_t operator()(uint32_t, int64_t, int64_t given, const SignedIntModel&, const BitModel&) const { return given; }
 };
 
 // §9.7.4 The heights of one patch in raster order. `placed[l]`: local vertex l was placed by an earlier patch, its
 // height h[l] is known and not coded. h: in, the heights (encoder) or the placed ones (decoder); out, all heights.
-// `value(model, max_class, truth, out)` codes one signed integer. Returns false when a decoded height leaves
-// [lo, hi] (§9.7.4: bad_position). `res`, `coded`: scratch per local vertex. `nb` (optional): the mesh around the
-// patch, for the vertices without a tap set. `choose(l, pred, h[l], model)` (encoder only): the height the encoder
-// codes for l once its prediction and residual model are known (lossless: h[l]).
+// `value(model, max_class, truth, out, sign)` codes one signed integer, its sign with the model `sign`. Returns false
+// when a decoded height leaves [lo, hi] (§9.7.4: bad_position). `res`, `coded`: scratch per local vertex. `nb`
+// (optional): the mesh around the patch, for the vertices without a tap set. `choose(l, pred, h[l], model, sign)`
+// (encoder only): the height the encoder codes for l once its prediction and residual models are known (lossless:
+// h[l]).
 template <typename Value, typename Choose = LpKeepHeight>
 bool code_lp_heights(const Level& level, const LpRaster& raster, const LpTable& table, LpModels& m, int bits,
                      int64_t lo, int64_t hi, const std::vector<uint8_t>& placed, std::vector<int64_t>& h,
@@ -355,7 +372,8 @@ bool code_lp_heights(const Level& level, const LpRaster& raster, const LpTable& 
     const int group = s == kLpNoSet ? kLpGroups - 1 : lp_group(table.taps[s]);
     int64_t r;
     SignedIntModel& model = m.residual[group][activity];
-    if (!value(model, bits, choose(l, pred, h[l], model) - pred, r)) return false;
+    BitModel& sign = m.sign_context ? m.sign[group][lp_sign_context(id, h, pred)] : model.sign;
+    if (!value(model, bits, choose(l, pred, h[l], model, sign) - pred, r, &sign)) return false;
     const int64_t v = pred + r;
     if (v < lo || v > hi) return false;
     h[l] = v;

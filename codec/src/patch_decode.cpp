@@ -13,7 +13,7 @@
 namespace prm::codec {
 
 Status read_patches(const uint8_t* data, size_t size, uint64_t offset, const ClosedMesh& mesh, int bits,
-                    const std::array<uint32_t, 3>& lo, const std::array<uint32_t, 3>& hi,
+                    const std::array<uint32_t, 3>& lo, const std::array<uint32_t, 3>& hi, bool contexts,
                     const std::vector<uint8_t>& cls, std::vector<uint32_t>& q, std::vector<uint8_t>& known) {
   q.assign(size_t{3} * mesh.num_vertices, 0);
   known.assign(mesh.num_vertices, 0);
@@ -34,8 +34,13 @@ Status read_patches(const uint8_t* data, size_t size, uint64_t offset, const Clo
   const LatticeConstants lc = LatticeConstants::of(grid);
   const PatchSet ps = build_patches(mesh, cls);
   auto models = std::make_unique<PatchModels>();
+  models->lp.sign_context = contexts;
+  std::vector<uint32_t> vertex_corner;  // §10.2, for the base references (§8.4.1)
+  if (contexts) vertex_corners(mesh, vertex_corner);
   auto bit = [&](BitModel& m, bool) { return rc.decode_bit(m) != 0; };
-  auto value = [&](SignedIntModel& m, int max_class, int64_t, int64_t& out) { return decode_signed(rc, m, max_class, out); };
+  auto value = [&](SignedIntModel& m, int max_class, int64_t, int64_t& out, BitModel* sign = nullptr) {
+    return decode_signed(rc, m, max_class, out, sign ? *sign : m.sign);
+  };
   auto direct = [&](int n, uint32_t) { return rc.decode_direct(n); };
   LpTable table;
   std::array<bool, kLpSets> fitted{};
@@ -59,17 +64,27 @@ Status read_patches(const uint8_t* data, size_t size, uint64_t offset, const Clo
     const std::string which = "patch " + std::to_string(p);
     // §8.4 The patch header.
     const int axis = code_symbol8(models->axis, 0, bit);
+    const int pair = axis <= 5 ? axis / 2 : 0;  // an axis above 5 is reported below
+    // §8.4.1 The base from its reference, if it has one; otherwise from the previous patch's base.
+    const uint32_t reference =
+        contexts && axis <= 5 ? base_reference(mesh, vertex_corner, known, mesh.corner_vertex[3 * size_t{ps.order[ps.start[p]]}])
+                 : UINT32_MAX;
+    std::array<int64_t, 2> from = previous;
+    if (reference != UINT32_MAX)
+      from = nearest_lattice_point(lc, q[3 * size_t{reference} + static_cast<size_t>(pair_u(pair))],
+                                   q[3 * size_t{reference} + static_cast<size_t>(pair_w(pair))]);
+    SignedIntModel& mi = reference != UINT32_MAX ? models->base_ref_i : models->base_i;
+    SignedIntModel& mj = reference != UINT32_MAX ? models->base_ref_j : models->base_j;
     int64_t di, dj;
-    if (!decode_signed(rc, models->base_i, bits + 2, di) || !decode_signed(rc, models->base_j, bits + 2, dj))
+    if (!decode_signed(rc, mi, bits + 2, di) || !decode_signed(rc, mj, bits + 2, dj))
       return fail(Error::bad_section, "8.4", which + ": base vertex out of range");
-    const std::array<int64_t, 2> base = {previous[0] + di, previous[1] + dj};
+    const std::array<int64_t, 2> base = {from[0] + di, from[1] + dj};
     const int align = code_symbol8(models->align, 0, bit);
     if (rc.failed()) return fail(Error::truncated, "5.5", "the patch data ends early");
     if (axis > 5 || align > 5) return fail(Error::bad_section, "8.4", which + ": axis or alignment above 5");
     if (base[0] <= -coord_bound || base[0] >= coord_bound || base[1] <= -coord_bound || base[1] >= coord_bound)
       return fail(Error::bad_section, "8.4", which + ": base vertex out of range");
     previous = base;
-    const int pair = axis / 2;
     const size_t cu = static_cast<size_t>(pair_u(pair)), cw = static_cast<size_t>(pair_w(pair)),
                  ch = static_cast<size_t>(pair);
     // §8.3 Lattice coordinates, then base-plane positions.

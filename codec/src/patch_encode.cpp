@@ -51,10 +51,11 @@ bool use_prediction(uint32_t shared, uint32_t vertices, bool always) {
 // Appendix B.2 The refinement's records of one patch's heights, as code_lp_heights coded them (res, coded: its
 // residuals and coded flags). window(l, given): the height's HeightWindow.
 template <typename Window>
-void record_heights(const Level& level, const LpRaster& raster, const LpTable& table, const std::vector<uint8_t>& placed,
-                    const std::vector<uint32_t>& global, const std::vector<int64_t>& res,
-                    const std::vector<uint8_t>& coded, int pair, int64_t lo, int64_t hi, const Window& window,
-                    const std::vector<uint32_t>& cq, std::vector<ChosenHeight>& out) {
+void record_heights(const Level& level, const LpRaster& raster, const LpTable& table, const LpModels& models,
+                    const std::vector<uint8_t>& placed, const std::vector<uint32_t>& global,
+                    const std::vector<int64_t>& h, const std::vector<int64_t>& res, const std::vector<uint8_t>& coded,
+                    int pair, int64_t lo, int64_t hi, const Window& window, const std::vector<uint32_t>& cq,
+                    std::vector<ChosenHeight>& out) {
   std::array<uint32_t, kLpOffsets> id;
   for (uint32_t l : raster.order()) {
     if (placed[l]) continue;
@@ -65,7 +66,14 @@ void record_heights(const Level& level, const LpRaster& raster, const LpTable& t
     c.lo = lo;
     c.hi = hi;
     const int group = s == kLpNoSet ? kLpGroups - 1 : lp_group(table.taps[s]);
-    c.context = static_cast<uint8_t>(group * kLpActivities + lp_activity(id, res, coded));
+    int sign = kLpNoSignContext;
+    if (models.sign_context) {
+      // The prediction as code_lp_heights made it; a height without a tap set keeps kLpNoSignContext's table,
+      // which is never used (it is held).
+      const int64_t pred = s == kLpNoSet ? lo : std::clamp(lp_predict(table, s, id, h), lo, hi);
+      sign = lp_sign_context(id, h, pred);
+    }
+    c.context = static_cast<uint16_t>(residual_context(group, lp_activity(id, res, coded), sign));
     if (s != kLpNoSet) {
       c.taps = static_cast<uint8_t>(table.taps[s]);
       for (int k = 0; k < table.taps[s]; ++k) {
@@ -115,7 +123,7 @@ struct FittedTable {
 Status write_section(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, int bits, int64_t grid,
                      const std::array<uint32_t, 3>& box_lo, const std::array<uint32_t, 3>& box_hi,
                      const std::vector<int8_t>& tri_axis, int depth, int overlap_depth, bool predict_every_patch,
-                     std::vector<uint8_t>& payload, std::vector<uint8_t>& known, PatchStats* stats,
+                     bool contexts, std::vector<uint8_t>& payload, std::vector<uint8_t>& known, PatchStats* stats,
                      const HeightFreedom* freedom, std::vector<uint32_t>* chosen, const FittedTable* given) {
   const uint32_t nt = mesh.num_triangles();
   std::vector<uint8_t> cls = dummy_triangles(mesh);
@@ -126,6 +134,9 @@ Status write_section(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, in
   const bool predicted = depth == kHeightDepthPredicted;
   RangeEncoder rc;
   auto models = std::make_unique<PatchModels>();
+  models->lp.sign_context = contexts;
+  std::vector<uint32_t> vertex_corner;  // §10.2, for the base references (§8.4.1)
+  if (contexts) vertex_corners(mesh, vertex_corner);
   // §8.4 Grid_Size and Height_Depth; §9.7.2 Overlap_Depth.
   rc.encode_direct(static_cast<uint32_t>(grid), kGridBits);
   rc.encode_direct(static_cast<uint32_t>(depth), 3);
@@ -134,8 +145,8 @@ Status write_section(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, in
     rc.encode_bit(m, truth ? 1 : 0);
     return truth;
   };
-  auto value = [&](SignedIntModel& m, int, int64_t truth, int64_t& out) {
-    encode_signed(rc, m, truth);
+  auto value = [&](SignedIntModel& m, int, int64_t truth, int64_t& out, BitModel* sign = nullptr) {
+    encode_signed(rc, m, truth, sign ? *sign : m.sign);
     out = truth;
     return true;
   };
@@ -231,10 +242,21 @@ Status write_section(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, in
   for (size_t p = 0; p < ps.size(); ++p) {
     PRM_TRY(prepare(p));
     const int pair = axis / 2;
-    // §8.4 The patch header.
+    // §8.4 The patch header; §8.4.1 the base from its reference, if it has one.
     code_symbol8(models->axis, axis, bit);
-    encode_signed(rc, models->base_i, c0[0] - previous[0]);
-    encode_signed(rc, models->base_j, c0[1] - previous[1]);
+    const uint32_t reference =
+        contexts ? base_reference(mesh, vertex_corner, known, mesh.corner_vertex[3 * size_t{ps.order[ps.start[p]]}])
+                 : UINT32_MAX;
+    if (reference != UINT32_MAX) {
+      const std::array<int64_t, 2> near =
+          nearest_lattice_point(lc, cw[3 * size_t{reference} + static_cast<size_t>(pair_u(pair))],
+                                cw[3 * size_t{reference} + static_cast<size_t>(pair_w(pair))]);
+      encode_signed(rc, models->base_ref_i, c0[0] - near[0]);
+      encode_signed(rc, models->base_ref_j, c0[1] - near[1]);
+    } else {
+      encode_signed(rc, models->base_i, c0[0] - previous[0]);
+      encode_signed(rc, models->base_j, c0[1] - previous[1]);
+    }
     code_symbol8(models->align, align, bit);
     previous = c0;
     const bool lp = predicted && use_prediction(raster.build(level), level.size(), predict_every_patch);
@@ -255,14 +277,15 @@ Status write_section(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, in
           return height_window(given, (*freedom->exact)[3 * size_t{global[l]} + static_cast<size_t>(pair)],
                                freedom->tolerance, lo, hi, pairs_of[global[l]] == 1u << pair);
         };
-        auto choose = [&](uint32_t l, int64_t pred, int64_t given, const SignedIntModel& model) -> int64_t {
+        auto choose = [&](uint32_t l, int64_t pred, int64_t given, const SignedIntModel& model,
+                          const BitModel& sign) -> int64_t {
           const HeightWindow w = window(l, given);
           if (!w.free) return given;
           int64_t best = given;
           double best_cost = 1e300;
           for (int64_t q = w.lo; q <= w.hi; ++q) {
             const double d = static_cast<double>(q) - w.exact;
-            const double cost = d * d + lambda * signed_cost_bits(model, q - pred);
+            const double cost = d * d + lambda * signed_cost_bits(model, q - pred, sign);
             if (cost < best_cost) best_cost = cost, best = q;
           }
           return best;
@@ -270,7 +293,8 @@ Status write_section(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, in
         in_range = code_lp_heights(level, raster, table, models->lp, bits, lo, hi, placed, h, res, scratch, value,
                                    &*nb, choose);
         if (in_range && freedom->sweeps > 0)
-          record_heights(level, raster, table, placed, global, res, scratch, pair, lo, hi, window, cq, refine);
+          record_heights(level, raster, table, models->lp, placed, global, h, res, scratch, pair, lo, hi, window, cq,
+                         refine);
         for (uint32_t l = 0; l < level.size(); ++l)
           cw_copy[3 * size_t{global[l]} + static_cast<size_t>(pair)] = static_cast<uint32_t>(h[l]);
       } else {
@@ -300,7 +324,7 @@ Status write_section(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, in
     std::vector<uint32_t> q = cw;
     refine_heights(refine, ResidualCosts::of(models->lp), freedom->lambda, freedom->sweeps, q);
     PRM_TRY(write_section(mesh, q, bits, grid, box_lo, box_hi, tri_axis, depth, overlap_depth, predict_every_patch,
-                          payload, known, stats, nullptr, nullptr, &own));
+                          contexts, payload, known, stats, nullptr, nullptr, &own));
     if (chosen) *chosen = q;
     return ok_status();
   }
@@ -318,10 +342,10 @@ Status write_section(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, in
 Status write_patches(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, int bits, int64_t grid,
                      const std::array<uint32_t, 3>& box_lo, const std::array<uint32_t, 3>& box_hi,
                      const std::vector<int8_t>& tri_axis, int depth, int overlap_depth, bool predict_every_patch,
-                     std::vector<uint8_t>& payload, std::vector<uint8_t>& known, PatchStats* stats,
+                     bool contexts, std::vector<uint8_t>& payload, std::vector<uint8_t>& known, PatchStats* stats,
                      const HeightFreedom* freedom, std::vector<uint32_t>* chosen) {
   return write_section(mesh, cq, bits, grid, box_lo, box_hi, tri_axis, depth, overlap_depth, predict_every_patch,
-                       payload, known, stats, freedom, chosen, nullptr);
+                       contexts, payload, known, stats, freedom, chosen, nullptr);
 }
 
 }  // namespace prm::codec

@@ -9,6 +9,7 @@
 
 #include "clers.h"
 #include "difference_patch.h"
+#include "fan_walk.h"
 #include "height_prediction.h"
 #include "prm_lattice.h"
 #include "regular_patches.h"
@@ -30,6 +31,7 @@ struct PatchModels {
   BitModel axis[8];
   BitModel align[8];
   SignedIntModel base_i, base_j;
+  SignedIntModel base_ref_i, base_ref_j;  // §8.4.1 with Flags bit 3
   HeightModels heights;
   LpModels lp;
 };
@@ -40,6 +42,48 @@ int code_symbol8(BitModel (&tree)[8], int truth, Coder& bit) {
   int node = 1;
   for (int k = 2; k >= 0; --k) node = node << 1 | (bit(tree[node], ((truth >> k) & 1) != 0) ? 1 : 0);
   return node - 8;
+}
+
+// §8.4.1 The base reference of a patch (Flags bit 3, format 1.4): the first vertex already placed by an earlier patch
+// (known[v]) among the base vertex b itself, then b's neighbours in the order of its fan walk from Vertex_Corner[b]
+// (§10.2), then the neighbours of each of those in the same order, the walk ending after kBaseWalk corners in all.
+// UINT32_MAX if there is none.
+constexpr int kBaseWalk = 64;
+inline uint32_t base_reference(const ClosedMesh& mesh, const std::vector<uint32_t>& vertex_corner,
+                               const std::vector<uint8_t>& known, uint32_t b) {
+  if (known[b]) return b;
+  std::array<uint32_t, kBaseWalk> ring;
+  int ring_size = 0, steps = 0;
+  // One fan walk about v; true when it found a placed vertex (in `found`).
+  auto walk = [&](uint32_t v, bool keep, uint32_t& found) {
+    const uint32_t c0 = vertex_corner[v];
+    if (c0 == UINT32_MAX) return false;
+    uint32_t c = c0;
+    do {
+      if (steps++ == kBaseWalk) return false;
+      const uint32_t x = mesh.corner_vertex[corner_next(c)];
+      if (known[x]) {
+        found = x;
+        return true;
+      }
+      if (keep) ring[static_cast<size_t>(ring_size++)] = x;
+      c = fan_next(mesh.opp.data(), c);
+    } while (c != c0);
+    return false;
+  };
+  uint32_t found = UINT32_MAX;
+  if (walk(b, true, found)) return found;
+  for (int k = 0; k < ring_size && steps < kBaseWalk; ++k)
+    if (walk(ring[static_cast<size_t>(k)], false, found)) return found;
+  return UINT32_MAX;
+}
+
+// §8.4.1 The lattice point nearest the base-plane position (u, w): j = floor((2w + C) / 2C), then
+// i = floor((2(u - B j) + A) / 2A).
+inline std::array<int64_t, 2> nearest_lattice_point(const LatticeConstants& lc, int64_t u, int64_t w) {
+  auto floor_div = [](int64_t a, int64_t d) { return a >= 0 ? a / d : -((-a + d - 1) / d); };
+  const int64_t j = floor_div(2 * w + lc.c, 2 * lc.c);
+  return {floor_div(2 * (u - lc.b * j) + lc.a, 2 * lc.a), j};
 }
 
 // §8.3 Lattice coordinates of the vertices of one patch: local vertex ids in first-appearance order over the

@@ -29,6 +29,8 @@ struct PatchStats {
 // heights by difference patches of that depth (§9.1-§9.3); kHeightDepthPredicted: by linear prediction (§9.7), the
 // self-overlapping patches by difference patches of `overlap_depth`. box_lo / box_hi: the header's quantized
 // bounding box (§3.3). Sets known[v] = 1 for every vertex of a patch (their positions are in this section).
+// `contexts`: Flags bit 3 (format 1.4): the bases from their references (§8.4.1) and the residuals' sign contexts
+// (§9.7.4).
 //
 // `freedom` (optional, linear prediction only): the exact heights before rounding, how far from them a coded height
 // may be and the Lagrange multiplier of the choice (PrmOptions::height_lambda); the encoder returns in `chosen`
@@ -42,13 +44,13 @@ struct HeightFreedom {
 Status write_patches(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, int bits, int64_t grid,
                      const std::array<uint32_t, 3>& box_lo, const std::array<uint32_t, 3>& box_hi,
                      const std::vector<int8_t>& tri_axis, int depth, int overlap_depth, bool predict_every_patch,
-                     std::vector<uint8_t>& payload, std::vector<uint8_t>& known, PatchStats* stats,
+                     bool contexts, std::vector<uint8_t>& payload, std::vector<uint8_t>& known, PatchStats* stats,
                      const HeightFreedom* freedom = nullptr, std::vector<uint32_t>* chosen = nullptr);
 
 // §8-§9 Decoder: positions of the patch vertices into q (3 per closed-mesh vertex), known[v] = 1 for them.
 // cls: per triangle kRegular / kIrregular / kDummyTriangle (§7).
 Status read_patches(const uint8_t* data, size_t size, uint64_t offset, const ClosedMesh& mesh, int bits,
-                    const std::array<uint32_t, 3>& lo, const std::array<uint32_t, 3>& hi,
+                    const std::array<uint32_t, 3>& lo, const std::array<uint32_t, 3>& hi, bool contexts,
                     const std::vector<uint8_t>& cls, std::vector<uint32_t>& q, std::vector<uint8_t>& known);
 
 }  // namespace prm::codec

@@ -37,11 +37,12 @@ inline int int_class(uint64_t m) {
 #endif
 }
 
-// |v| < 2^(kMaxClass + 1) is the caller's promise.
-inline void encode_signed(RangeEncoder& rc, SignedIntModel& m, int64_t v) {
+// |v| < 2^(kMaxClass + 1) is the caller's promise. `sign`: the model of the sign bit (m.sign unless a context
+// chooses another, §9.7.4).
+inline void encode_signed(RangeEncoder& rc, SignedIntModel& m, int64_t v, BitModel& sign) {
   rc.encode_bit(m.zero, v == 0);
   if (v == 0) return;
-  rc.encode_bit(m.sign, v < 0);
+  rc.encode_bit(sign, v < 0);
   const uint64_t mag = static_cast<uint64_t>(v < 0 ? -v : v);
   const int e = int_class(mag);
   for (int i = 0; i < e; ++i) rc.encode_bit(m.cls[i], 1);
@@ -55,16 +56,18 @@ inline void encode_signed(RangeEncoder& rc, SignedIntModel& m, int64_t v) {
   }
 }
 
+inline void encode_signed(RangeEncoder& rc, SignedIntModel& m, int64_t v) { encode_signed(rc, m, v, m.sign); }
+
 // The encoder's estimate of what encode_signed(v) costs now, in bits (-log2 of each modelled decision's probability,
 // one bit per direct bit); the models are not changed.
-inline double signed_cost_bits(const SignedIntModel& m, int64_t v) {
+inline double signed_cost_bits(const SignedIntModel& m, int64_t v, const BitModel& sign) {
   auto bit = [](const BitModel& b, int one) {
     const double p0 = static_cast<double>(b.p) / kProbOne;
     return -std::log2(one ? 1.0 - p0 : p0);
   };
   double bits = bit(m.zero, v == 0);
   if (v == 0) return bits;
-  bits += bit(m.sign, v < 0);
+  bits += bit(sign, v < 0);
   const uint64_t mag = static_cast<uint64_t>(v < 0 ? -v : v);
   const int e = int_class(mag);
   for (int i = 0; i < e; ++i) bits += bit(m.cls[i], 1);
@@ -73,11 +76,13 @@ inline double signed_cost_bits(const SignedIntModel& m, int64_t v) {
   return bits;
 }
 
+inline double signed_cost_bits(const SignedIntModel& m, int64_t v) { return signed_cost_bits(m, v, m.sign); }
+
 // Returns false (and leaves v = 0) when the class exceeds max_class: the caller's bound on the magnitude.
-inline bool decode_signed(RangeDecoder& rc, SignedIntModel& m, int max_class, int64_t& v) {
+inline bool decode_signed(RangeDecoder& rc, SignedIntModel& m, int max_class, int64_t& v, BitModel& sign) {
   v = 0;
   if (rc.decode_bit(m.zero)) return true;
-  const bool negative = rc.decode_bit(m.sign) != 0;
+  const bool negative = rc.decode_bit(sign) != 0;
   int e = 0;
   while (e < kMaxClass && rc.decode_bit(m.cls[e])) ++e;
   if (e > max_class) return false;
@@ -91,6 +96,10 @@ inline bool decode_signed(RangeDecoder& rc, SignedIntModel& m, int max_class, in
   }
   v = negative ? -static_cast<int64_t>(mag) : static_cast<int64_t>(mag);
   return true;
+}
+
+inline bool decode_signed(RangeDecoder& rc, SignedIntModel& m, int max_class, int64_t& v) {
+  return decode_signed(rc, m, max_class, v, m.sign);
 }
 
 }  // namespace prm::codec

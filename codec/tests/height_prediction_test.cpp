@@ -53,7 +53,7 @@ TEST(HeightPrediction, WorkedExampleOfTheSpec) {
   LpModels models;
   std::vector<int64_t> residuals;
   std::vector<std::pair<int, int>> contexts;
-  auto record = [&](SignedIntModel& m, int, int64_t truth, int64_t& out) {
+  auto record = [&](SignedIntModel& m, int, int64_t truth, int64_t& out, BitModel*) {
     for (int g = 0; g < kLpGroups; ++g)
       for (int a = 0; a < kLpActivities; ++a)
         if (&models.residual[g][a] == &m) contexts.push_back({g, a});
@@ -68,7 +68,7 @@ TEST(HeightPrediction, WorkedExampleOfTheSpec) {
   // The decoder's side: the same residuals give the heights back.
   std::vector<int64_t> decoded(6, 0);
   size_t next = 0;
-  auto replay = [&](SignedIntModel&, int, int64_t, int64_t& out) {
+  auto replay = [&](SignedIntModel&, int, int64_t, int64_t& out, BitModel*) {
     out = residuals[next++];
     return true;
   };
@@ -86,7 +86,7 @@ TEST(HeightPrediction, PlacedVerticesAreNotCoded) {
   std::vector<uint8_t> placed = {1, 0, 0, 1, 0, 0}, coded;
   LpModels models;
   int count = 0;
-  auto value = [&](SignedIntModel&, int, int64_t truth, int64_t& out) {
+  auto value = [&](SignedIntModel&, int, int64_t truth, int64_t& out, BitModel*) {
     ++count;
     out = truth;
     return true;
@@ -103,7 +103,7 @@ TEST(HeightPrediction, OutOfBoundsHeightIsRejected) {
   std::vector<int64_t> h(6, 0), res;
   std::vector<uint8_t> placed(6, 0), coded;
   LpModels models;
-  auto hostile = [&](SignedIntModel&, int, int64_t, int64_t& out) {
+  auto hostile = [&](SignedIntModel&, int, int64_t, int64_t& out, BitModel*) {
     out = 5000;  // beyond Hi = 4095
     return true;
   };

@@ -73,8 +73,10 @@ TEST(PrmStream, PillowRoundTripsAtEveryHeightDepth) {
     EXPECT_EQ(rep.patch_vertices, m.nv());  // every vertex is on a patch
     EXPECT_GT(rep.irregular_bytes, 0u);
     EXPECT_EQ(rep.predicted_patches, depth == 7 ? 2u : 0u);
-    // §3.2: the valence context makes every PRM stream 1.2, the seam context (the encoder's choice) 1.3.
-    EXPECT_EQ(enc.value[5], (enc.value[6] & 0x04) ? kFormatMinorSeam : kFormatMinorPredicted);
+    // §3.2: the valence context makes every PRM stream 1.2, the seam context (the encoder's choice) 1.3, the patch
+    // contexts (the default) 1.4.
+    EXPECT_EQ(enc.value[6] & 0x08, 0x08);
+    EXPECT_EQ(enc.value[5], kFormatMinorPatchContexts);
     expect_round_trip(m, enc.value, rep);
     best = std::min(best, enc.value.size());
   }
@@ -341,6 +343,11 @@ TEST_P(PrmStreamHostile, EveryByteFlippedWithTheCrcFixed) {
       decode_any(t);
     }
   EXPECT_LT(accepted, 2 * s.size());  // most flips are caught by the sections' own checks
+  // Flags bit 3 toggled (§3.3): the patches section read with or without the patch contexts (§8.4.1, §9.7.4).
+  std::vector<uint8_t> t = s;
+  t[6] ^= 0x08;
+  fix_crc(t);
+  decode_any(t);
 }
 
 TEST_P(PrmStreamHostile, EveryTruncationAndRandomSections) {
@@ -390,6 +397,7 @@ TEST(PrmStream, GoldenFingerprint) {
   const QMesh m = pillow(4, 3, 5);
   PrmOptions o;
   o.grid = 8;
+  o.patch_contexts = false;  // the 1.2 writer
   EncodeReport rep;
   const auto enc = encode_prm(m.q.data(), m.nv(), m.tris.data(), m.nt(), unit_frame(), o, &rep);
   ASSERT_TRUE(enc.ok());

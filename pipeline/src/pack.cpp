@@ -43,6 +43,8 @@ PackResult pack_at(const Mesh& source, const MetroReference& reference, const Pa
     po.height_lambda = options.height_lambda;
   }
   po.height_sweeps = options.height_sweeps;
+  po.seam_context = options.max_minor >= codec::kFormatMinorSeam ? -1 : 0;
+  po.patch_contexts = options.max_minor >= codec::kFormatMinorPatchContexts;
   // The stream of a candidate with options o, and the error of its decoded mesh.
   auto encode_and_measure = [&](const remesh::PrmMesh& prm, const codec::PrmOptions& o, codec::EncodeReport* report,
                                 std::vector<uint8_t>* stream) {
@@ -89,7 +91,7 @@ PackResult pack_at(const Mesh& source, const MetroReference& reference, const Pa
     int lo = -1, hi = static_cast<int>(std::size(kHeightLambdas));  // lo meets (-1: rounding), hi does not
     while (hi - lo > 1) {
       const int mid = (lo + hi) / 2;
-      codec::PrmOptions o;
+      codec::PrmOptions o = po;
       o.height_tolerance = kHeightTolerance;
       o.height_lambda = kHeightLambdas[mid];
       o.height_sweeps = options.height_sweeps;

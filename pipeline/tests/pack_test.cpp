@@ -142,6 +142,34 @@ TEST(Pack, SelfOverlappingPatchRoundTrips) {
   }
 }
 
+// Format 1.4's patch contexts (spec §8.4.1 bases from their references, §9.7.4 sign contexts) on a real PRM: the
+// stream with them is smaller than without, and both decode to the PRM exactly.
+TEST(Pack, PatchContextsShrinkARealPrm) {
+  const prm::Mesh input = prm::read_mesh(std::string(PRM_SHARED_MESHES) + "/spot.obj");
+  PackOptions o;
+  o.grid_fraction = 0.008;
+  o.bits = 11;
+  o.optimize_heights = false;
+  const prm::pipeline::PackResult r = prm::pipeline::pack(input, o);
+  size_t bytes[2] = {0, 0}, patches[2] = {0, 0};
+  for (int with = 0; with < 2; ++with) {
+    prm::codec::PrmOptions po;
+    po.patch_contexts = with != 0;
+    prm::codec::EncodeReport rep;
+    const auto enc = prm::pipeline::encode_prm_mesh(r.remesh.prm, &rep, po);
+    ASSERT_TRUE(enc.ok()) << enc.status.message;
+    EXPECT_EQ(enc.value[5], with ? prm::codec::kFormatMinorPatchContexts : (enc.value[6] & 0x04 ? 3 : 2));
+    EXPECT_EQ((enc.value[6] & 0x08) != 0, with != 0);
+    expect_exact_round_trip(r.remesh.prm, enc.value, rep);
+    bytes[with] = enc.value.size();
+    patches[with] = rep.patch_bytes;
+  }
+  std::printf("spot, grid 0.008 of the diagonal, 11 bits: %zu bytes without the patch contexts (patches %zu), %zu with "
+              "(patches %zu)\n", bytes[0], patches[0], bytes[1], patches[1]);
+  EXPECT_LT(patches[1], patches[0]);
+  EXPECT_LT(bytes[1], bytes[0]);
+}
+
 // With a target error and no bit depth, the search tries the bit depths and then the step scales of kStepScales at
 // the best one, and keeps the smallest stream of all it tried, whose decoded mesh meets the target.
 TEST(Pack, GridFromTargetError) {

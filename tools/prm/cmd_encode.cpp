@@ -28,12 +28,17 @@ void add_encode_command(CLI::App& root) {
   struct Options {
     std::string input, output;
     int bits = 12;
+    std::string max_version = "1.4";
     bool json = false;
   };
   auto opt = std::make_shared<Options>();
   cmd->add_option("input", opt->input, "Mesh file to compress")->required()->check(CLI::ExistingFile);
   cmd->add_option("-o,--output", opt->output, "Output .prm file")->required();
   cmd->add_option("--bits", opt->bits, "Quantization bits per coordinate (8..20)")->check(CLI::Range(8, 20));
+  cmd->add_option("--max-version", opt->max_version,
+                  "Newest format the stream may need, for older decoders: 1.4 (default), 1.3 (no patch contexts, spec "
+                  "§8.4.1), 1.2 (no CLERS seam context either, §6.5.2; a general-path stream is then 1.0)")
+      ->check(CLI::IsMember({"1.2", "1.3", "1.4"}));
   cmd->add_flag("--json", opt->json, "Print the report as one JSON object");
   cmd->callback([opt] {
     const Mesh mesh = read_mesh(opt->input);
@@ -42,7 +47,8 @@ void add_encode_command(CLI::App& root) {
     const auto t0 = std::chrono::steady_clock::now();
     // A PRM file (`prm remesh` output: prm-frame comment, lattice labels) is encoded in its own frame, so that its
     // grid vertices are lattice points; any other mesh takes the general path at --bits.
-    const auto enc = pipeline::encode_any_mesh(mesh, opt->bits, &rep, &was_prm);
+    const int max_minor = opt->max_version[2] - '0';
+    const auto enc = pipeline::encode_any_mesh(mesh, opt->bits, &rep, &was_prm, max_minor);
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     if (!enc.ok()) throw InputError("'" + opt->input + "' cannot be encoded: " + describe(enc.status));
     write_file_bytes(opt->output, enc.value);

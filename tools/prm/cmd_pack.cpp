@@ -19,6 +19,7 @@ void add_pack_command(CLI::App& root) {
     std::string input, output, keep_prm;
     double target = 0, grid = 0, grid_fraction = 0, tau = 0.2, lambda = 0, step_scale = 0;
     int bits = 0, sweeps = 4;
+    std::string max_version = "1.4";
     size_t samples = 0;
     bool json = false, no_fit = false, round_heights = false;
   };
@@ -61,6 +62,10 @@ void add_pack_command(CLI::App& root) {
       ->check(CLI::Range(0, 16));
   cmd->add_flag("--round-heights", opt->round_heights,
                 "Round every height to the nearest step (no rate-distortion choice; for comparison)");
+  cmd->add_option("--max-version", opt->max_version,
+                  "Newest format the stream may need, for older decoders: 1.4 (default), 1.3 (no patch contexts, spec "
+                  "§8.4.1), 1.2 (no CLERS seam context either, §6.5.2)")
+      ->check(CLI::IsMember({"1.2", "1.3", "1.4"}));
   cmd->add_flag("--json", opt->json, "Print the report as one JSON object");
   cmd->callback([opt] {
     if (opt->grid <= 0 && opt->grid_fraction <= 0 && opt->target <= 0)
@@ -78,6 +83,7 @@ void add_pack_command(CLI::App& root) {
     po.height_lambda = opt->lambda;
     po.optimize_heights = !opt->round_heights;
     po.height_sweeps = opt->sweeps;
+    po.max_minor = opt->max_version[2] - '0';
     pipeline::PackResult r;
     try {
       r = pipeline::pack(input, po);

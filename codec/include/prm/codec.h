@@ -34,6 +34,7 @@ constexpr uint8_t kFormatMinor = 0;     // general-path streams (§3.2)
 constexpr uint8_t kFormatMinorPrm = 1;        // PRM streams of format 1.1 (§3.2): read, no longer written
 constexpr uint8_t kFormatMinorPredicted = 2;  // PRM streams without the seam context: format 1.2 (§3.2, §7.3, §9.7)
 constexpr uint8_t kFormatMinorSeam = 3;       // streams with the CLERS seam context: format 1.3 (§3.2, §6.5.2)
+constexpr uint8_t kFormatMinorPatchContexts = 4;  // PRM streams with the patch contexts: format 1.4 (§3.2, §8.4.1, §9.7.4)
 
 enum class Error : uint8_t {
   ok = 0,
@@ -176,6 +177,9 @@ struct PrmOptions {
   int height_sweeps = 4;
   // §6.5.2 The CLERS seam context (format 1.3): -1 the smaller, 0 never (a 1.2 stream), 1 always.
   int seam_context = -1;
+  // §8.4.1, §9.7.4 The patch contexts (format 1.4: Flags bit 3): each patch's base coded from an already placed
+  // vertex next to it, the heights' residual signs with a context. false: a 1.2 or 1.3 stream.
+  bool patch_contexts = true;
 };
 
 // Encodes a PRM: the encoder checks which triangles are regular (§7.1: three lattice neighbours forming a grid

@@ -20,9 +20,11 @@ codec::Result<std::vector<uint8_t>> encode_prm_mesh(const remesh::PrmMesh& prm, 
                                                     const codec::PrmOptions& options = {});
 
 // Encodes any mesh file's contents: a PRM (its PLY carries the prm-frame comment and lattice labels) through
-// encode_prm_mesh, anything else through the general path at `bits` bits.
+// encode_prm_mesh, anything else through the general path at `bits` bits. `max_minor`: the newest format 1.N the
+// stream may need (2: neither the seam context of 1.3 nor the patch contexts of 1.4; 3: no patch contexts).
 codec::Result<std::vector<uint8_t>> encode_any_mesh(const Mesh& mesh, int bits, codec::EncodeReport* report,
-                                                    bool* was_prm = nullptr);
+                                                    bool* was_prm = nullptr,
+                                                    int max_minor = codec::kFormatMinorPatchContexts);
 
 // A decoded stream as a prm::Mesh (dequantized double positions).
 Mesh to_mesh(const codec::DecodedMesh& decoded);

@@ -41,6 +41,8 @@ struct PackOptions {
   bool optimize_heights = true;
   double height_lambda = 0;
   int height_sweeps = 4;  // codec::PrmOptions::height_sweeps: the choice refined over all heights (0: one by one)
+  // The newest format 1.N the stream may need (encode_any_mesh): 4, or 3 (no patch contexts), or 2 (no seam context).
+  int max_minor = codec::kFormatMinorPatchContexts;
 };
 constexpr double kHeightTolerance = 1.5;
 // The step scales the search tries at the best bit depth: eighths of an octave towards the next coarser depth. The
