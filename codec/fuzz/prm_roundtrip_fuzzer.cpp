@@ -50,6 +50,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     o.grid = grid;
     o.height_depth = depth == 8 ? 7 : depth;
     o.predict_every_patch = depth == 8;
+    o.patch_contexts = (depth + data[0]) % 2 == 0;  // format 1.4's patch contexts (§8.4.1, §9.7.4) or not
     EncodeReport rep;
     const auto enc = encode_prm(m.q.data(), m.nv(), m.tris.data(), m.nt(), f, o, &rep);
     if (!enc.ok() || rep.regular_triangles == 0) __builtin_trap();
@@ -69,6 +70,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   o.height_tolerance = 0.5 + static_cast<double>(data[2] >> 3) / 8.0;   // 0.5 .. 4.375 steps
   o.height_lambda = std::ldexp(1.0, data[1] % 12 - 6);                   // 2^-6 .. 2^5
   o.unrounded = unrounded.data();
+  o.height_sweeps = data[0] / 9 % 5;  // spec Appendix B.2: 0 (one by one) .. 4 sweeps
   EncodeReport rep;
   const auto enc = encode_prm(m.q.data(), m.nv(), m.tris.data(), m.nt(), f, o, &rep);
   if (!enc.ok()) __builtin_trap();
