@@ -164,15 +164,21 @@ TEST(PrmStream, LinearPredictionWinsOnASmoothPatch) {
   expect_round_trip(m, enc.value, rep);
 }
 
+// Unrounded values for m's coordinates: each within 0.49 of its quantized value (a fixed pseudo-random offset).
+std::vector<double> unrounded_near(const QMesh& m, uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> offset(-0.49, 0.49);
+  std::vector<double> unrounded(m.q.size());
+  for (size_t i = 0; i < m.q.size(); ++i) unrounded[i] = static_cast<double>(m.q[i]) + offset(rng);
+  return unrounded;
+}
+
 // PrmOptions::height_lambda: the encoder may code, for the heights of linear-prediction patches, another integer
 // than the rounded one, within the tolerance of the unrounded value; everything else decodes exactly, the stream is
 // an ordinary 1.2 one, and smaller than the lossless one.
 TEST(PrmStream, HeightFreedomStaysWithinTheTolerance) {
   const QMesh m = pillow(40, 0);
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<double> offset(-0.49, 0.49);
-  std::vector<double> unrounded(m.q.size());
-  for (size_t i = 0; i < m.q.size(); ++i) unrounded[i] = static_cast<double>(m.q[i]) + offset(rng);
+  const std::vector<double> unrounded = unrounded_near(m, 7);
   PrmOptions lossless;
   lossless.grid = 8;
   const auto base = encode_prm(m.q.data(), m.nv(), m.tris.data(), m.nt(), unit_frame(), lossless);
@@ -256,10 +262,7 @@ TEST(PrmStream, HeightFreedomStaysWithinTheTolerance) {
 // one-by-one choice, on the same PRM and at the same lambda; both streams decode.
 TEST(PrmStream, RefinedHeightsLowerTheObjective) {
   const QMesh m = pillow(40, 0);
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<double> offset(-0.49, 0.49);
-  std::vector<double> unrounded(m.q.size());
-  for (size_t i = 0; i < m.q.size(); ++i) unrounded[i] = static_cast<double>(m.q[i]) + offset(rng);
+  const std::vector<double> unrounded = unrounded_near(m, 5);
   for (double lambda : {0.25, 1.0, 4.0}) {
     double j[2] = {0, 0};
     size_t bytes[2] = {0, 0};
