@@ -66,15 +66,11 @@ Status read_patches(const uint8_t* data, size_t size, uint64_t offset, const Clo
     const int axis = code_symbol8(models->axis, 0, bit);
     const int pair = axis <= 5 ? axis / 2 : 0;  // an axis above 5 is reported below
     // §8.4.1 The base from its reference, if it has one; otherwise from the previous patch's base.
-    const uint32_t reference =
-        contexts && axis <= 5 ? base_reference(mesh, vertex_corner, known, mesh.corner_vertex[3 * size_t{ps.order[ps.start[p]]}])
-                 : UINT32_MAX;
     std::array<int64_t, 2> from = previous;
-    if (reference != UINT32_MAX)
-      from = nearest_lattice_point(lc, q[3 * size_t{reference} + static_cast<size_t>(pair_u(pair))],
-                                   q[3 * size_t{reference} + static_cast<size_t>(pair_w(pair))]);
-    SignedIntModel& mi = reference != UINT32_MAX ? models->base_ref_i : models->base_i;
-    SignedIntModel& mj = reference != UINT32_MAX ? models->base_ref_j : models->base_j;
+    const bool referenced =
+        contexts && axis <= 5 && base_from_reference(mesh, ps, p, pair, vertex_corner, known, q.data(), lc, from);
+    SignedIntModel& mi = referenced ? models->base_ref_i : models->base_i;
+    SignedIntModel& mj = referenced ? models->base_ref_j : models->base_j;
     int64_t di, dj;
     if (!decode_signed(rc, mi, bits + 2, di) || !decode_signed(rc, mj, bits + 2, dj))
       return fail(Error::bad_section, "8.4", which + ": base vertex out of range");

@@ -244,13 +244,8 @@ Status write_section(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, in
     const int pair = axis / 2;
     // §8.4 The patch header; §8.4.1 the base from its reference, if it has one.
     code_symbol8(models->axis, axis, bit);
-    const uint32_t reference =
-        contexts ? base_reference(mesh, vertex_corner, known, mesh.corner_vertex[3 * size_t{ps.order[ps.start[p]]}])
-                 : UINT32_MAX;
-    if (reference != UINT32_MAX) {
-      const std::array<int64_t, 2> near =
-          nearest_lattice_point(lc, cw[3 * size_t{reference} + static_cast<size_t>(pair_u(pair))],
-                                cw[3 * size_t{reference} + static_cast<size_t>(pair_w(pair))]);
+    std::array<int64_t, 2> near;
+    if (contexts && base_from_reference(mesh, ps, p, pair, vertex_corner, known, cw.data(), lc, near)) {
       encode_signed(rc, models->base_ref_i, c0[0] - near[0]);
       encode_signed(rc, models->base_ref_j, c0[1] - near[1]);
     } else {

@@ -86,6 +86,18 @@ inline std::array<int64_t, 2> nearest_lattice_point(const LatticeConstants& lc, 
   return {floor_div(2 * (u - lc.b * j) + lc.a, 2 * lc.a), j};
 }
 
+// §8.4.1 What the base of patch p of `pair` is coded from, both sides: Nearest(R) if the patch has a base reference R
+// (true; q: the positions placed so far, 3 per vertex), otherwise nothing is changed (false).
+inline bool base_from_reference(const ClosedMesh& mesh, const PatchSet& ps, size_t p, int pair,
+                                const std::vector<uint32_t>& vertex_corner, const std::vector<uint8_t>& known,
+                                const uint32_t* q, const LatticeConstants& lc, std::array<int64_t, 2>& from) {
+  const uint32_t r = base_reference(mesh, vertex_corner, known, mesh.corner_vertex[3 * size_t{ps.order[ps.start[p]]}]);
+  if (r == UINT32_MAX) return false;
+  from = nearest_lattice_point(lc, q[3 * size_t{r} + static_cast<size_t>(pair_u(pair))],
+                               q[3 * size_t{r} + static_cast<size_t>(pair_w(pair))]);
+  return true;
+}
+
 // §8.3 Lattice coordinates of the vertices of one patch: local vertex ids in first-appearance order over the
 // patch's triangles (patch order, corners 0, 1, 2), lattice coordinates propagated from the first triangle, where
 // corner 0 is at `base` and corner 1 at base + direction `align`. Fills `level` (coordinates, local triangles),
