@@ -29,6 +29,7 @@ PackResult pack_at(const Mesh& source, const MetroReference& reference, const Pa
   ro.reliefs.parallel = options.parallel;
   ro.parallel = options.parallel;
   ro.fit_heights = options.fit_heights;
+  ro.error_flip_weight = options.error_flip_weight;
   ro.grid_size = options.grid_size;
   ro.grid_fraction = options.grid_fraction;
   ro.initial_grid_size = initial_grid;

@@ -66,6 +66,7 @@ RemeshResult remesh(const Mesh& input, const RemeshOptions& options, const Error
   ro.max_normal_angle_deg = options.max_normal_angle_deg;
   ro.parallel = options.parallel;
   ro.fit_heights = options.fit_heights;
+  ro.error_flip_weight = options.error_flip_weight;
   const double diagonal = bbox_diagonal(input);
   auto grid_of = [&](double size) {
     return std::max<int64_t>(2, static_cast<int64_t>(std::llround(size / ro.frame.step)));

@@ -124,11 +124,14 @@ PrmMesh resample_and_merge(const LayoutInput& layout, const ResampleOptions& opt
   SeamOptions so;
   so.max_normal_angle_deg = options.max_normal_angle_deg;
   so.grid_length = static_cast<double>(prm.lattice.A) * prm.frame.step;
+  so.error_flip_weight = options.error_flip_weight;
   const AabbTree tree(input);
   const SeamStats ss = optimize_seams(merged, input, normals, tree, so);
   st.loops_broken = ss.loops_broken;
   st.seam_collapses = ss.boundary_collapses;
   st.area_flips = ss.area_flips;
+  st.valence_flips = ss.valence_flips;
+  st.error_flips = ss.error_flips;
   st.repairs = ss.repairs;
   st.unrepaired = ss.unrepaired;
   st.seconds_merge = seconds_since(t1);

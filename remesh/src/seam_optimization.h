@@ -1,7 +1,8 @@
 // Paper §2.3-2.4 after the loop fill: vertices on relief boundaries are collapsed onto grid vertices (never changing
 // the topology), edges joining vertices of different reliefs are flipped while that reduces the area, and the
 // triangles that end up flipped (normal more than 90 degrees from the input surface's nearby normal) or with zero
-// area are removed by local collapses and flips.
+// area are removed by local collapses and flips. Then (ours) seam edges are flipped towards valence 6, and where
+// that brings the seam closer to the input.
 #pragma once
 
 #include <cstddef>
@@ -15,6 +16,10 @@ namespace prm::remesh {
 struct SeamOptions {
   double max_normal_angle_deg = 90.0;  // a triangle is flipped beyond this angle from the reference normal
   double grid_length = 1.0;            // the grid size in model units (sets the zero-area tolerance)
+  // Error flips after the valence flips (seam_optimization.cpp, try_error_flip): a seam edge is flipped when that
+  // brings its two triangles 10% closer to the input and, where it moves valences away from 6, by at least this many
+  // mean triangle errors per unit of (valence - 6)^2 added. Negative: no error flips; 0: valences are not weighed.
+  double error_flip_weight = 4.0;
 };
 
 struct SeamStats {
@@ -22,6 +27,7 @@ struct SeamStats {
   size_t boundary_collapses = 0;
   size_t area_flips = 0;
   size_t valence_flips = 0;       // seam flips towards valence 6
+  size_t error_flips = 0;         // seam flips that bring the surface closer to the input
   size_t repairs = 0;             // collapses and flips that removed flipped or zero-area triangles
   size_t unrepaired = 0;          // flipped or zero-area triangles left (0 on success)
   size_t non_lattice_vertices = 0;

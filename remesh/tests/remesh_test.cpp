@@ -192,6 +192,41 @@ TEST(Remesh, LeastSquaresHeightsLowerTheError) {
   }
 }
 
+// The seam flips towards the input (SeamOptions::error_flip_weight) bring the PRM closer to the input at the same
+// grid, touch nothing but the seams' triangulation (same vertices, same positions before the height fit), and leave a
+// valid PRM. Measured (`prm remesh M --grid-fraction G --error-flip-weight W --json`): horse at 0.008, RMS 2.58e-4
+// without, 2.29e-4 with weight 4 (282 flips); spot at 0.015, 6.60e-4 and 5.78e-4 (100 flips).
+TEST(Remesh, SeamErrorFlipsLowerTheError) {
+  for (const char* name : {"horse.ply", "spot.obj"}) {
+    const Mesh input = load_closed(std::string(PRM_SHARED_MESHES) + "/" + name);
+    const MetroReference reference(input);
+    const double grid = std::string(name) == "spot.obj" ? 0.015 : 0.008;
+    double rms[2];
+    PrmMesh prm[2];
+    for (int flips = 0; flips < 2; ++flips) {
+      RemeshOptions o;
+      o.grid_fraction = grid;
+      o.error_flip_weight = flips ? 4.0 : -1.0;
+      RemeshResult r = remesh(input, o);
+      const DistanceReport d = reference.compare(r.prm.mesh);
+      rms[flips] = d.rel(d.rms);
+      prm[flips] = std::move(r.prm);
+    }
+    std::printf("%s at %g: RMS without seam error flips %.3e, with %.3e (%zu flips)\n", name, grid, rms[0], rms[1],
+                prm[1].stats.error_flips);
+    EXPECT_EQ(prm[0].stats.error_flips, 0u) << name;
+    EXPECT_GT(prm[1].stats.error_flips, 0u) << name;
+    EXPECT_LT(rms[1], 0.95 * rms[0]) << name;
+    EXPECT_EQ(prm[1].mesh.positions.size(), prm[0].mesh.positions.size()) << name;
+    EXPECT_EQ(prm[1].mesh.triangles.size(), prm[0].mesh.triangles.size()) << name;
+    EXPECT_EQ(prm[1].vertex_relief, prm[0].vertex_relief) << name;
+    EXPECT_EQ(prm[1].lattice_i, prm[0].lattice_i) << name;
+    EXPECT_EQ(prm[1].lattice_j, prm[0].lattice_j) << name;
+    EXPECT_NE(prm[1].mesh.triangles, prm[0].mesh.triangles) << name;
+    expect_valid_prm(input, prm[1], name);
+  }
+}
+
 #else
 TEST(Remesh, DenseRealMeshes) {
   for (const char* name : {"horse.ply", "venus.off", "feline.off", "bunny_zipper.ply"})

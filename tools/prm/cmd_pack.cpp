@@ -22,6 +22,7 @@ void add_pack_command(CLI::App& root) {
     std::string max_version = "1.4";
     size_t samples = 0;
     bool json = false, no_fit = false, round_heights = false;
+    double error_flip_weight = 4.0;
   };
   auto opt = std::make_shared<Options>();
   cmd->add_option("input", opt->input, "Mesh file (OBJ/PLY/OFF/STL/glTF); holes are closed first")
@@ -49,6 +50,9 @@ void add_pack_command(CLI::App& root) {
       ->check(CLI::Range(1.0, 1.999999));
   cmd->add_option("--samples", opt->samples, "Metro samples per surface for the target-error search (default 0: Metro's ten per face)");
   cmd->add_option("--keep-prm", opt->keep_prm, "Also write the piecewise regular mesh (PLY with lattice labels)");
+  cmd->add_option("--error-flip-weight", opt->error_flip_weight,
+                  "Seam flips that bring the surface closer to the input: a flip that moves valences away from 6 must gain at least this many mean triangle errors per unit of (valence - 6)^2 (default 4; 0: valences not weighed; -1: no such flips)")
+      ->check(CLI::Range(-1.0, 1e6));
   cmd->add_flag("--interpolate-heights", opt->no_fit,
                 "Keep the lattice vertices on the input surface (no least-squares heights; for comparison)");
   cmd->add_option("--height-lambda", opt->lambda,
@@ -80,6 +84,7 @@ void add_pack_command(CLI::App& root) {
     po.step_scale = opt->step_scale;
     po.metro_samples = opt->samples;
     po.fit_heights = !opt->no_fit;
+    po.error_flip_weight = opt->error_flip_weight;
     po.height_lambda = opt->lambda;
     po.optimize_heights = !opt->round_heights;
     po.height_sweeps = opt->sweeps;

@@ -20,6 +20,7 @@ void add_remesh_command(CLI::App& root) {
     double grid = 0, grid_fraction = 0, target = 0, tau = 0.2;
     int bits = 12;
     bool json = false, naive = false, no_fit = false;
+    double error_flip_weight = 4.0;
     size_t samples = 0;  // Metro's default density (ten per face): what `prm compare` and the tests measure
   };
   auto opt = std::make_shared<Options>();
@@ -38,6 +39,9 @@ void add_remesh_command(CLI::App& root) {
   cmd->add_option("--bits", opt->bits, "Quantization bits of the codec that will store it (8..20)")->check(CLI::Range(8, 20));
   cmd->add_option("--samples", opt->samples, "Metro samples per surface for the error search (default 0: Metro's ten per face; fewer samples over-weight the vertices and bias the RMS up)");
   cmd->add_flag("--naive-reliefs", opt->naive, "Reliefs by closest axis only (for comparison)");
+  cmd->add_option("--error-flip-weight", opt->error_flip_weight,
+                  "Seam flips that bring the surface closer to the input: a flip that moves valences away from 6 must gain at least this many mean triangle errors per unit of (valence - 6)^2 (default 4; 0: valences not weighed; -1: no such flips)")
+      ->check(CLI::Range(-1.0, 1e6));
   cmd->add_flag("--interpolate-heights", opt->no_fit,
                 "Keep the lattice vertices on the input surface (no least-squares heights; for comparison)");
   cmd->add_flag("--json", opt->json, "Print the report as one JSON object");
@@ -54,6 +58,7 @@ void add_remesh_command(CLI::App& root) {
     ro.reliefs.tau = opt->tau;
     ro.reliefs.naive = opt->naive;
     ro.fit_heights = !opt->no_fit;
+    ro.error_flip_weight = opt->error_flip_weight;
     ro.grid_size = opt->grid;
     ro.grid_fraction = opt->grid_fraction;
     ro.target_error = opt->target;
@@ -93,7 +98,8 @@ void add_remesh_command(CLI::App& root) {
           {"unrepaired_triangles", s.unrepaired},
           {"stats", {{"sliced_vertices", s.sliced_vertices}, {"collapses", s.collapses}, {"cell_flips", s.cell_flips},
                      {"stuck", s.stuck}, {"fill_triangles", s.fill_triangles}, {"loops_broken", s.loops_broken},
-                     {"seam_collapses", s.seam_collapses}, {"area_flips", s.area_flips}, {"repairs", s.repairs}}},
+                     {"seam_collapses", s.seam_collapses}, {"area_flips", s.area_flips}, {"valence_flips", s.valence_flips},
+                     {"error_flips", s.error_flips}, {"repairs", s.repairs}}},
           {"search", search}, {"seconds", secs}};
       std::printf("%s\n", j.dump().c_str());
       return;

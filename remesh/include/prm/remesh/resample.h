@@ -25,6 +25,7 @@ struct ResampleOptions {
   double max_normal_angle_deg = 90.0;  // paper: no triangle may turn more than 90 degrees away
   bool parallel = true;                // resample reliefs concurrently
   bool fit_heights = true;             // move lattice vertices along their axes to the least-squares fit
+  double error_flip_weight = 4.0;      // seam flips towards the input (SeamOptions::error_flip_weight; < 0: none)
 };
 
 struct ResampleStats {
@@ -34,6 +35,7 @@ struct ResampleStats {
   size_t collapses = 0, cell_flips = 0, stuck = 0;
   size_t fill_triangles = 0, loops_broken = 0;
   size_t seam_collapses = 0, area_flips = 0, repairs = 0, unrepaired = 0;
+  size_t valence_flips = 0, error_flips = 0;
   size_t vertices = 0, faces = 0, regular_faces = 0, lattice_vertices = 0;
   size_t heights_moved = 0, height_moves_reverted = 0;  // least-squares heights (height_fitting.h)
   double seconds_slice = 0, seconds_merge = 0;
