@@ -10,6 +10,7 @@
 
 #include "loop_fill.h"
 #include "prm/aabb_tree.h"
+#include "prm/remesh/resample.h"
 
 namespace prm::remesh {
 
@@ -19,7 +20,7 @@ struct SeamOptions {
   // Error flips after the valence flips (seam_optimization.cpp, try_error_flip): a seam edge is flipped when that
   // brings its two triangles 10% closer to the input and, where it moves valences away from 6, by at least this many
   // mean triangle errors per unit of (valence - 6)^2 added. Negative: no error flips; 0: valences are not weighed.
-  double error_flip_weight = 4.0;
+  double error_flip_weight = kDefaultErrorFlipWeight;
 };
 
 struct SeamStats {
