@@ -21,7 +21,8 @@ struct LayoutInput {
 
 // The seam error flips' weight on the valences they spoil (SeamOptions::error_flip_weight). Measured with `prm pack
 // MODEL --target-error E --bits 10 --step-scale S --error-flip-weight W` (bytes at W = 1 / 2 / 4 / 8): feline (2.6e-4,
-// S 1.09) 8,961 / 8,908 / 8,926 / 9,088; bunny (2e-4, S 1) 7,103 / 7,073 / 7,111 / 7,229.
+// S 1.09) 8,961 / 8,908 / 8,926 / 9,088; bunny (2e-4, S 1) 7,103 / 7,073 / 7,111 / 7,229 (flips of seam edges only;
+// with the irregular edges inside reliefs too, at W = 2: 8,875 and 7,033).
 constexpr double kDefaultErrorFlipWeight = 2.0;
 
 struct ResampleOptions {
