@@ -193,8 +193,8 @@ TEST(Remesh, LeastSquaresHeightsLowerTheError) {
 }
 
 // The error flips (SeamOptions::error_flip_weight) bring the PRM closer to the input at the same grid, touch nothing
-// but the triangulation of the seams and the irregular triangles (same vertices, same positions before the height fit), and leave a
-// valid PRM. Measured (this test, or `prm remesh M --grid-fraction G --error-flip-weight W --json`): horse at 0.008,
+// but the triangulation of the seams and the irregular triangles (same vertices, same positions before the height
+// fit), and leave a valid PRM. Measured (this test, or `prm remesh M --grid-fraction G --error-flip-weight W --json`): horse at 0.008,
 // RMS 2.58e-4 without, 2.21e-4 with the default weight 2 (451 flips); spot at 0.015, 6.60e-4 and 5.53e-4 (147 flips).
 TEST(Remesh, SeamErrorFlipsLowerTheError) {
   for (const char* name : {"horse.ply", "spot.obj"}) {
