@@ -152,24 +152,35 @@ TEST(Remesh, TargetErrorOnPaperModels) {
   }
 }
 
+// The same mesh remeshed twice at one grid size (a fraction of the diagonal), once per variant of the options, with
+// the RMS distance of each to the input.
+struct TwoRemeshes {
+  double rms[2];
+  PrmMesh prm[2];
+};
+template <typename Configure>
+TwoRemeshes remesh_two_ways(const Mesh& input, double grid_fraction, const Configure& configure) {
+  const MetroReference reference(input);
+  TwoRemeshes out;
+  for (int variant = 0; variant < 2; ++variant) {
+    RemeshOptions o;
+    o.grid_fraction = grid_fraction;
+    configure(variant, o);
+    RemeshResult r = remesh(input, o);
+    const DistanceReport d = reference.compare(r.prm.mesh);
+    out.rms[variant] = d.rel(d.rms);
+    out.prm[variant] = std::move(r.prm);
+  }
+  return out;
+}
+
 // Least-squares heights (height_fitting.h): at one grid size, the fitted PRM is closer to the input than the
 // interpolating one (same vertices, same lattice, same triangles; only heights differ), and stays a valid PRM.
 TEST(Remesh, LeastSquaresHeightsLowerTheError) {
   for (const char* name : {"horse.ply", "spot.obj"}) {
     const Mesh input = load_closed(std::string(PRM_SHARED_MESHES) + "/" + name);
-    const MetroReference reference(input);
     const double grid = std::string(name) == "spot.obj" ? 0.015 : 0.008;
-    double rms[2];
-    PrmMesh prm[2];
-    for (int fit = 0; fit < 2; ++fit) {
-      RemeshOptions o;
-      o.grid_fraction = grid;
-      o.fit_heights = fit == 1;
-      RemeshResult r = remesh(input, o);
-      const DistanceReport d = reference.compare(r.prm.mesh);
-      rms[fit] = d.rel(d.rms);
-      prm[fit] = std::move(r.prm);
-    }
+    auto [rms, prm] = remesh_two_ways(input, grid, [](int fit, RemeshOptions& o) { o.fit_heights = fit == 1; });
     std::printf("%s at %g: RMS interpolated %.3e, least squares %.3e; %zu heights moved\n", name, grid, rms[0],
                 rms[1], prm[1].stats.heights_moved);
     EXPECT_LT(rms[1], 0.85 * rms[0]) << name;
@@ -194,25 +205,18 @@ TEST(Remesh, LeastSquaresHeightsLowerTheError) {
 
 // The error flips (SeamOptions::error_flip_weight) bring the PRM closer to the input at the same grid, touch nothing
 // but the triangulation of the seams and the irregular triangles (same vertices, same positions before the height
-// fit), and leave a valid PRM. Measured (this test, or `prm remesh M --grid-fraction G --error-flip-weight W --json`): horse at 0.008,
-// RMS 2.58e-4 without, 2.21e-4 with the default weight 2 (451 flips); spot at 0.015, 6.60e-4 and 5.53e-4 (147 flips).
-TEST(Remesh, SeamErrorFlipsLowerTheError) {
+// fit), and leave a valid PRM. Measured (this test, or `prm remesh M --grid-fraction G --error-flip-weight W
+// --json`): horse at 0.008, RMS 2.58e-4 without, 2.21e-4 with the default weight 2 (451 flips); spot at 0.015,
+// 6.60e-4 and 5.53e-4 (147 flips).
+TEST(Remesh, ErrorFlipsLowerTheError) {
   for (const char* name : {"horse.ply", "spot.obj"}) {
     const Mesh input = load_closed(std::string(PRM_SHARED_MESHES) + "/" + name);
-    const MetroReference reference(input);
     const double grid = std::string(name) == "spot.obj" ? 0.015 : 0.008;
-    double rms[2];
-    PrmMesh prm[2];
-    for (int flips = 0; flips < 2; ++flips) {
-      RemeshOptions o;
-      o.grid_fraction = grid;
-      if (!flips) o.error_flip_weight = -1.0;  // otherwise the default, kDefaultErrorFlipWeight
-      RemeshResult r = remesh(input, o);
-      const DistanceReport d = reference.compare(r.prm.mesh);
-      rms[flips] = d.rel(d.rms);
-      prm[flips] = std::move(r.prm);
-    }
-    std::printf("%s at %g: RMS without seam error flips %.3e, with %.3e (%zu flips)\n", name, grid, rms[0], rms[1],
+    // Variant 0 without error flips, variant 1 with the default weight (kDefaultErrorFlipWeight).
+    auto [rms, prm] = remesh_two_ways(input, grid, [](int flips, RemeshOptions& o) {
+      if (!flips) o.error_flip_weight = -1.0;
+    });
+    std::printf("%s at %g: RMS without error flips %.3e, with %.3e (%zu flips)\n", name, grid, rms[0], rms[1],
                 prm[1].stats.error_flips);
     EXPECT_EQ(prm[0].stats.error_flips, 0u) << name;
     EXPECT_GT(prm[1].stats.error_flips, 0u) << name;

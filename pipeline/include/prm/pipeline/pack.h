@@ -33,7 +33,7 @@ struct PackOptions {
   size_t metro_samples = 0;  // per surface for the error (0: Metro's default, ten per face)
   bool parallel = true;
   bool fit_heights = true;   // least-squares heights (remesh::RemeshOptions::fit_heights)
-  double error_flip_weight = remesh::kDefaultErrorFlipWeight;  // seam flips towards the input (remesh::RemeshOptions::error_flip_weight)
+  double error_flip_weight = remesh::kDefaultErrorFlipWeight;  // error flips (remesh::RemeshOptions)
   // Rate-distortion choice of the heights (codec::PrmOptions::height_lambda, within kHeightTolerance steps of the
   // remeshed heights). With a target error, the grid search rounds the heights; then the largest of kHeightLambdas
   // whose decoded mesh still meets the target is used, found by bisection (the grid size moves in whole

@@ -25,7 +25,7 @@ struct RemeshOptions {
   double max_normal_angle_deg = 90;
   bool parallel = true;
   bool fit_heights = true;       // least-squares heights of the lattice vertices (ResampleOptions::fit_heights)
-  double error_flip_weight = kDefaultErrorFlipWeight;  // seam flips towards the input (ResampleOptions::error_flip_weight; < 0: none)
+  double error_flip_weight = kDefaultErrorFlipWeight;  // error flips (ResampleOptions::error_flip_weight; < 0: none)
 };
 
 // Symmetric RMS and maximum distance between the input and a candidate, as fractions of the input's diagonal.

@@ -31,7 +31,7 @@ struct ResampleOptions {
   double max_normal_angle_deg = 90.0;  // paper: no triangle may turn more than 90 degrees away
   bool parallel = true;                // resample reliefs concurrently
   bool fit_heights = true;             // move lattice vertices along their axes to the least-squares fit
-  double error_flip_weight = kDefaultErrorFlipWeight;      // seam flips towards the input (SeamOptions::error_flip_weight; < 0: none)
+  double error_flip_weight = kDefaultErrorFlipWeight;  // error flips (SeamOptions::error_flip_weight; < 0: none)
 };
 
 struct ResampleStats {
