@@ -1,11 +1,37 @@
 // prm: the command-line tool. One sub-command per cmd_<name>.cpp; see commands.h.
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <new>
+#include <string>
 
 #include "commands.h"
 #include "exit_codes.h"
 #include "prm/error.h"
+
+namespace {
+
+// Every floating-point option of every command refuses NaN and the infinities by name: CLI11's range checks let NaN
+// through (no comparison with it is true), and a NaN grid or weight would otherwise reach the library.
+void refuse_non_finite_numbers(CLI::App& app) {
+  const CLI::Validator finite(
+      [](std::string& text) -> std::string {
+        try {
+          size_t used = 0;
+          const double v = std::stod(text, &used);
+          if (!std::isfinite(v)) return "must be a finite number, got " + text;
+        } catch (const std::exception&) {
+          // not a number at all: the option's own conversion says so
+        }
+        return {};
+      },
+      "", "FINITE");
+  for (CLI::Option* opt : app.get_options())
+    if (opt->get_type_name().rfind("FLOAT", 0) == 0) opt->check(finite);
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) refuse_non_finite_numbers(*sub);
+}
+
+}  // namespace
 
 int main(int argc, char** argv) {
   using namespace prm::cli;
@@ -28,6 +54,7 @@ int main(int argc, char** argv) {
   add_decode_command(app);
   add_pack_command(app);
   add_unpack_command(app);
+  refuse_non_finite_numbers(app);
 
   try {
     app.parse(argc, argv);
