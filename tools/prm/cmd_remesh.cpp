@@ -40,7 +40,7 @@ void add_remesh_command(CLI::App& root) {
   cmd->add_option("--samples", opt->samples, "Metro samples per surface for the error search (default 0: Metro's ten per face; fewer samples over-weight the vertices and bias the RMS up)");
   cmd->add_flag("--naive-reliefs", opt->naive, "Reliefs by closest axis only (for comparison)");
   cmd->add_option("--error-flip-weight", opt->error_flip_weight,
-                  "Seam flips that bring the surface closer to the input: a flip that moves valences away from 6 must gain at least this many mean triangle errors per unit of (valence - 6)^2 (default 2; 0: valences not weighed; -1: no such flips)")
+                  "Flips of irregular edges (seams) that bring the surface closer to the input: a flip that moves valences away from 6 must gain at least this many mean triangle errors per unit of (valence - 6)^2 (default 2; 0: valences not weighed; -1: no such flips)")
       ->check(CLI::Range(-1.0, 1e6));
   cmd->add_flag("--interpolate-heights", opt->no_fit,
                 "Keep the lattice vertices on the input surface (no least-squares heights; for comparison)");
