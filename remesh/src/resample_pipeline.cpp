@@ -27,8 +27,7 @@ namespace prm::remesh {
 bool is_grid_triangle(int axis, const std::array<int64_t, 2>& a, const std::array<int64_t, 2>& b,
                       const std::array<int64_t, 2>& c) {
   auto neighbours = [](const std::array<int64_t, 2>& p, const std::array<int64_t, 2>& q) {
-    const int64_t di = q[0] - p[0], dj = q[1] - p[1];
-    return (std::abs(di) + std::abs(dj) == 1) || (di == 1 && dj == -1) || (di == -1 && dj == 1);
+    return lattice_neighbours(q[0] - p[0], q[1] - p[1]);
   };
   if (!neighbours(a, b) || !neighbours(b, c) || !neighbours(c, a)) return false;
   const int64_t o = (b[0] - a[0]) * (c[1] - a[1]) - (c[0] - a[0]) * (b[1] - a[1]);

@@ -307,14 +307,14 @@ class SeamOptimizer {
     return true;
   }
 
-  // Error flips (ours, after the paper's area flips and the valence flips): the area-reducing diagonal of a seam quad is the
-  // one that cuts deeper into a convex surface, and the seam triangles are the PRM's largest (their longest edge is
-  // 1.5-2 grid lengths against 1.16 inside a patch). Measured on the feline at a fixed grid and 14 bits, before
-  // these flips: the seam triangles are 16.5% of the surface and carry 48.5% of the squared distance to the input.
-  // An edge of the seams or of the irregular triangles inside a relief (no face of it may be regular) is flipped
-  // when that lowers the two triangles' squared distance to the input by kErrorFlipGain of it
-  // and, if it moves the four valences away from 6 (the sum of (valence - 6)^2 grows by D > 0; irregular valences
-  // cost the connectivity coder, spec §6.5.2), the drop is at least error_flip_weight * D mean triangle errors.
+  // Error flips (ours, after the paper's area flips and the valence flips): the area-reducing diagonal of a seam
+  // quad is the one that cuts deeper into a convex surface, and the seam triangles are the PRM's largest (their
+  // longest edge is 1.5-2 grid lengths against 1.16 inside a patch). Measured on the feline at a fixed grid and 14
+  // bits, before these flips: the seam triangles are 16.5% of the surface and carry 48.5% of the squared distance
+  // to the input. An edge of the seams or of the irregular triangles inside a relief (no face of it may be regular)
+  // is flipped when that lowers the two triangles' squared distance to the input by kErrorFlipGain of it and, if it
+  // moves the four valences away from 6 (the sum of (valence - 6)^2 grows by D > 0; irregular valences cost the
+  // connectivity coder, spec §6.5.2), the drop is at least error_flip_weight * D mean triangle errors.
   static constexpr double kErrorFlipGain = 0.1;
   // Squared distance to the input integrated over a triangle: seven samples, each weighted by a seventh of twice
   // the area.
@@ -355,11 +355,8 @@ class SeamOptimizer {
     const VH c = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h));
     const MergedVertex &x = mv(a), &y = mv(b), &z = mv(c);
     if (!x.lattice || !y.lattice || !z.lattice || x.relief != y.relief || y.relief != z.relief) return false;
-    auto nbr = [](const MergedVertex& p, const MergedVertex& q) {
-      const int64_t di = q.i - p.i, dj = q.j - p.j;
-      return (std::abs(di) + std::abs(dj) == 1) || (di == 1 && dj == -1) || (di == -1 && dj == 1);
-    };
-    return nbr(x, y) && nbr(y, z) && nbr(z, x);
+    return lattice_neighbours(y.i - x.i, y.j - x.j) && lattice_neighbours(z.i - y.i, z.j - y.j) &&
+           lattice_neighbours(x.i - z.i, x.j - z.j);
   }
   bool touches_grid_face(EH e) const {
     return grid_face(mesh_.halfedge_handle(e, 0)) || grid_face(mesh_.halfedge_handle(e, 1));

@@ -1,8 +1,8 @@
 // Paper §2.3-2.4 after the loop fill: vertices on relief boundaries are collapsed onto grid vertices (never changing
 // the topology), edges joining vertices of different reliefs are flipped while that reduces the area, and the
 // triangles that end up flipped (normal more than 90 degrees from the input surface's nearby normal) or with zero
-// area are removed by local collapses and flips. Then (ours) seam edges are flipped towards valence 6, and where
-// that brings the seam closer to the input.
+// area are removed by local collapses and flips. Then (ours) seam edges are flipped towards valence 6, and
+// irregular edges where that brings the surface closer to the input.
 #pragma once
 
 #include <cstddef>
@@ -19,8 +19,8 @@ struct SeamOptions {
   double grid_length = 1.0;            // the grid size in model units (sets the zero-area tolerance)
   // Error flips after the valence flips (seam_optimization.cpp, try_error_flip): an edge with no face that may be
   // regular (the seams, the irregular triangles inside a relief) is flipped when that brings its two triangles 10%
-  // closer to the input and, where it moves valences away from 6, by at least this many
-  // mean triangle errors per unit of (valence - 6)^2 added. Negative: no error flips; 0: valences are not weighed.
+  // closer to the input and, where it moves valences away from 6, by at least this many mean triangle errors per
+  // unit of (valence - 6)^2 added. Negative: no error flips; 0: valences are not weighed.
   double error_flip_weight = kDefaultErrorFlipWeight;
 };
 
@@ -29,7 +29,7 @@ struct SeamStats {
   size_t boundary_collapses = 0;
   size_t area_flips = 0;
   size_t valence_flips = 0;       // seam flips towards valence 6
-  size_t error_flips = 0;         // seam flips that bring the surface closer to the input
+  size_t error_flips = 0;         // flips of irregular edges that bring the surface closer to the input
   size_t repairs = 0;             // collapses and flips that removed flipped or zero-area triangles
   size_t unrepaired = 0;          // flipped or zero-area triangles left (0 on success)
   size_t non_lattice_vertices = 0;

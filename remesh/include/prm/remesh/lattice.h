@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
 
 #include "prm/mesh.h"
 
@@ -53,6 +54,11 @@ struct HexLattice {
   }
   std::array<int64_t, 2> to_base(int64_t i, int64_t j) const { return {A * i + B * j, C * j}; }
 };
+
+// Lattice points (i, j) and (i + di, j + dj) are neighbours: the step is one of the six directions (spec §8.1).
+inline bool lattice_neighbours(int64_t di, int64_t dj) {
+  return (std::abs(di) + std::abs(dj) == 1) || (di == 1 && dj == -1) || (di == -1 && dj == 1);
+}
 
 int64_t isqrt(int64_t n);
 
