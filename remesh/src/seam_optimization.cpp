@@ -331,8 +331,8 @@ class SeamOptimizer {
     }
     return sum * norm(cross(b - a, c - a)) / 7.0;
   }
-  bool try_error_flip(EH e, double error_unit) {
-    Quad q;
+  // `q`: on success, the quad whose diagonal was flipped.
+  bool try_error_flip(EH e, double error_unit, Quad& q) {
     if (!flippable(e, q)) return false;
     const int va = static_cast<int>(mesh_.valence(q.a)), vb = static_cast<int>(mesh_.valence(q.b));
     if (va <= 3 || vb <= 3) return false;
@@ -372,11 +372,27 @@ class SeamOptimizer {
       ++faces;
     }
     const double error_unit = faces ? sum / static_cast<double>(faces) : 0;
+    // Each round visits the edges in index order, as a full sweep would, but looks again only at the edges whose
+    // test may have changed since it last failed: an edge's test reads its two faces, the valences of their four
+    // vertices and the edges around those (OpenMesh's is_flip_ok), all within the faces around the four vertices of a
+    // flipped quad, whose edges a flip marks again. Positions do not move, so the flips are those of full sweeps.
+    std::vector<uint8_t> again(mesh_.n_edges(), 1);
+    auto mark_around = [&](VH v) {
+      for (auto f : mesh_.vf_range(v))
+        for (auto e : mesh_.fe_range(f)) again[static_cast<size_t>(e.idx())] = 1;
+    };
     size_t flips = 0;
     for (int round = 0; round < 6; ++round) {
       size_t now = 0;
-      for (auto e : mesh_.edges())
-        if (!mesh_.status(e).deleted() && !touches_grid_face(e) && try_error_flip(e, error_unit)) ++now;
+      for (auto e : mesh_.edges()) {
+        uint8_t& look = again[static_cast<size_t>(e.idx())];
+        if (!look) continue;
+        look = 0;
+        Quad q;
+        if (mesh_.status(e).deleted() || touches_grid_face(e) || !try_error_flip(e, error_unit, q)) continue;
+        ++now;
+        for (VH v : {q.a, q.b, q.c, q.d}) mark_around(v);
+      }
       flips += now;
       if (now == 0) break;
     }
