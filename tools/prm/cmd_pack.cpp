@@ -6,6 +6,7 @@
 
 #include "codec_cli_util.h"
 #include "commands.h"
+#include "remesher_options.h"
 #include "prm/error.h"
 #include "prm/mesh_io.h"
 #include "prm/pipeline/pack.h"
@@ -50,11 +51,7 @@ void add_pack_command(CLI::App& root) {
       ->check(CLI::Range(1.0, 1.999999));
   cmd->add_option("--samples", opt->samples, "Metro samples per surface for the target-error search (default 0: Metro's ten per face)");
   cmd->add_option("--keep-prm", opt->keep_prm, "Also write the piecewise regular mesh (PLY with lattice labels)");
-  cmd->add_option("--error-flip-weight", opt->error_flip_weight,
-                  "Flips of irregular edges (seams) that bring the surface closer to the input: a flip that moves valences away from 6 must gain at least this many mean triangle errors per unit of (valence - 6)^2 (default 2; 0: valences not weighed; -1: no such flips)")
-      ->check(CLI::Range(-1.0, 1e6));
-  cmd->add_flag("--interpolate-heights", opt->no_fit,
-                "Keep the lattice vertices on the input surface (no least-squares heights; for comparison)");
+  add_remesher_options(cmd, opt->error_flip_weight, opt->no_fit);
   cmd->add_option("--height-lambda", opt->lambda,
                   "Rate-distortion weight of the coded heights (squared quantization steps per bit; each height may "
                   "move up to 1.5 steps; spec Appendix B). Default: with --target-error, the largest of sixteen values "

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
+#include "remesher_options.h"
 #include "prm/mesh_io.h"
 #include "prm/mesh_repair.h"
 #include "prm/mesh_validate.h"
@@ -39,11 +40,7 @@ void add_remesh_command(CLI::App& root) {
   cmd->add_option("--bits", opt->bits, "Quantization bits of the codec that will store it (8..20)")->check(CLI::Range(8, 20));
   cmd->add_option("--samples", opt->samples, "Metro samples per surface for the error search (default 0: Metro's ten per face; fewer samples over-weight the vertices and bias the RMS up)");
   cmd->add_flag("--naive-reliefs", opt->naive, "Reliefs by closest axis only (for comparison)");
-  cmd->add_option("--error-flip-weight", opt->error_flip_weight,
-                  "Flips of irregular edges (seams) that bring the surface closer to the input: a flip that moves valences away from 6 must gain at least this many mean triangle errors per unit of (valence - 6)^2 (default 2; 0: valences not weighed; -1: no such flips)")
-      ->check(CLI::Range(-1.0, 1e6));
-  cmd->add_flag("--interpolate-heights", opt->no_fit,
-                "Keep the lattice vertices on the input surface (no least-squares heights; for comparison)");
+  add_remesher_options(cmd, opt->error_flip_weight, opt->no_fit);
   cmd->add_flag("--json", opt->json, "Print the report as one JSON object");
   cmd->callback([opt] {
     if (opt->grid <= 0 && opt->grid_fraction <= 0 && opt->target <= 0)

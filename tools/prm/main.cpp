@@ -17,8 +17,7 @@ void refuse_non_finite_numbers(CLI::App& app) {
   const CLI::Validator finite(
       [](std::string& text) -> std::string {
         try {
-          size_t used = 0;
-          const double v = std::stod(text, &used);
+          const double v = std::stod(text);
           if (!std::isfinite(v)) return "must be a finite number, got " + text;
         } catch (const std::exception&) {
           // not a number at all: the option's own conversion says so
