@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "prm_lattice.h"
+#include "prm/lattice.h"
 
 namespace prm::codec {
 

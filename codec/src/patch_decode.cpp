@@ -26,12 +26,12 @@ Status read_patches(const uint8_t* data, size_t size, uint64_t offset, const Clo
   // §8.4 Grid_Size and Height_Depth.
   const int64_t grid = rc.decode_direct(kGridBits);
   const int depth = static_cast<int>(rc.decode_direct(3));
-  if (grid < 2 || grid > (int64_t{1} << bits)) return fail(Error::bad_section, "8.4", "Grid_Size out of range");
+  if (!valid_grid_size(grid, bits)) return fail(Error::bad_section, "8.4", "Grid_Size out of range");
   const bool predicted = depth == kHeightDepthPredicted;
   // §9.7.2 Overlap_Depth and the predictor table.
   const int overlap_depth = predicted ? static_cast<int>(rc.decode_direct(3)) : depth;
   if (overlap_depth > kMaxHeightDepth) return fail(Error::bad_section, "9.7.2", "Overlap_Depth above 6");
-  const LatticeConstants lc = LatticeConstants::of(grid);
+  const HexLattice lc = HexLattice::with_grid(grid);
   const PatchSet ps = build_patches(mesh, cls);
   auto models = std::make_unique<PatchModels>();
   models->lp.sign_context = contexts;
@@ -94,7 +94,7 @@ Status read_patches(const uint8_t* data, size_t size, uint64_t offset, const Clo
     for (uint32_t l = 0; l < level.size(); ++l) {
       const uint32_t v = global[l];
       // |i|, |j| are bounded by the propagation from a bounded base (one step per triangle), so no overflow here.
-      const int64_t u = lc.a * level.coord[l][0] + lc.b * level.coord[l][1], w = lc.c * level.coord[l][1];
+      const int64_t u = lc.A * level.coord[l][0] + lc.B * level.coord[l][1], w = lc.C * level.coord[l][1];
       if (u < lo[cu] || u > hi[cu] || w < lo[cw] || w > hi[cw])
         return fail(Error::bad_position, "8.3", which + ": vertex " + std::to_string(v) + " outside the bounding box");
       if (known[v] && (q[3 * size_t{v} + cu] != u || q[3 * size_t{v} + cw] != w))
@@ -129,7 +129,7 @@ Status read_patches(const uint8_t* data, size_t size, uint64_t offset, const Clo
       const int64_t height = h[l];
       if (height < lo[ch] || height > hi[ch])
         return fail(Error::bad_position, "9.3", which + ": vertex " + std::to_string(v) + " height outside the bounding box");
-      const int64_t u = lc.a * level.coord[l][0] + lc.b * level.coord[l][1], w = lc.c * level.coord[l][1];
+      const int64_t u = lc.A * level.coord[l][0] + lc.B * level.coord[l][1], w = lc.C * level.coord[l][1];
       if (known[v]) {
         if (q[3 * size_t{v} + ch] != height)
           return fail(Error::bad_position, "9.3", which + ": vertex " + std::to_string(v) + " placed twice, differently");

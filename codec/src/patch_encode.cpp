@@ -17,7 +17,7 @@ namespace prm::codec {
 namespace {
 
 // Lattice coordinates of vertex v for pair k, if it is a lattice point.
-bool lattice_of(const std::vector<uint32_t>& cq, const LatticeConstants& lc, int pair, uint32_t v,
+bool lattice_of(const std::vector<uint32_t>& cq, const HexLattice& lc, int pair, uint32_t v,
                 std::array<int64_t, 2>& ij) {
   const int64_t u = cq[3 * size_t{v} + static_cast<size_t>(pair_u(pair))];
   const int64_t w = cq[3 * size_t{v} + static_cast<size_t>(pair_w(pair))];
@@ -25,7 +25,7 @@ bool lattice_of(const std::vector<uint32_t>& cq, const LatticeConstants& lc, int
 }
 
 // §7.1 The axis a triangle is regular for, or -1.
-int regular_axis(const std::vector<uint32_t>& cq, const LatticeConstants& lc, const uint32_t* v) {
+int regular_axis(const std::vector<uint32_t>& cq, const HexLattice& lc, const uint32_t* v) {
   for (int pair = 0; pair < 3; ++pair) {
     std::array<int64_t, 2> p[3];
     if (!lattice_of(cq, lc, pair, v[0], p[0]) || !lattice_of(cq, lc, pair, v[1], p[1]) ||
@@ -92,7 +92,7 @@ void record_heights(const Level& level, const LpRaster& raster, const LpTable& t
 void classify_triangles(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, int64_t grid,
                         std::vector<int8_t>& tri_axis) {
   const uint32_t nt = mesh.num_triangles();
-  const LatticeConstants lc = LatticeConstants::of(grid);
+  const HexLattice lc = HexLattice::with_grid(grid);
   const std::vector<uint8_t> dummy = dummy_triangles(mesh);
   tri_axis.assign(nt, -1);
   for (uint32_t t = 0; t < nt; ++t)
@@ -130,7 +130,7 @@ Status write_section(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, in
   for (uint32_t t = 0; t < nt; ++t)
     if (cls[t] != kDummyTriangle) cls[t] = tri_axis[t] >= 0 ? kRegular : kIrregular;
   const PatchSet ps = build_patches(mesh, cls);
-  const LatticeConstants lc = LatticeConstants::of(grid);
+  const HexLattice lc = HexLattice::with_grid(grid);
   const bool predicted = depth == kHeightDepthPredicted;
   RangeEncoder rc;
   auto models = std::make_unique<PatchModels>();

@@ -11,7 +11,7 @@
 #include "difference_patch.h"
 #include "fan_walk.h"
 #include "height_prediction.h"
-#include "prm_lattice.h"
+#include "prm/lattice.h"
 #include "regular_patches.h"
 #include "signed_int_model.h"
 
@@ -80,17 +80,17 @@ inline uint32_t base_reference(const ClosedMesh& mesh, const std::vector<uint32_
 
 // §8.4.1 The lattice point nearest the base-plane position (u, w): j = floor((2w + C) / 2C), then
 // i = floor((2(u - B j) + A) / 2A).
-inline std::array<int64_t, 2> nearest_lattice_point(const LatticeConstants& lc, int64_t u, int64_t w) {
+inline std::array<int64_t, 2> nearest_lattice_point(const HexLattice& lc, int64_t u, int64_t w) {
   auto floor_div = [](int64_t a, int64_t d) { return a >= 0 ? a / d : -((-a + d - 1) / d); };
-  const int64_t j = floor_div(2 * w + lc.c, 2 * lc.c);
-  return {floor_div(2 * (u - lc.b * j) + lc.a, 2 * lc.a), j};
+  const int64_t j = floor_div(2 * w + lc.C, 2 * lc.C);
+  return {floor_div(2 * (u - lc.B * j) + lc.A, 2 * lc.A), j};
 }
 
 // §8.4.1 What the base of patch p of `pair` is coded from, both sides: Nearest(R) if the patch has a base reference R
 // (true; q: the positions placed so far, 3 per vertex), otherwise nothing is changed (false).
 inline bool base_from_reference(const ClosedMesh& mesh, const PatchSet& ps, size_t p, int pair,
                                 const std::vector<uint32_t>& vertex_corner, const std::vector<uint8_t>& known,
-                                const uint32_t* q, const LatticeConstants& lc, std::array<int64_t, 2>& from) {
+                                const uint32_t* q, const HexLattice& lc, std::array<int64_t, 2>& from) {
   const uint32_t r = base_reference(mesh, vertex_corner, known, mesh.corner_vertex[3 * size_t{ps.order[ps.start[p]]}]);
   if (r == UINT32_MAX) return false;
   from = nearest_lattice_point(lc, q[3 * size_t{r} + static_cast<size_t>(pair_u(pair))],

@@ -7,14 +7,6 @@
 
 namespace prm::pipeline {
 
-codec::Frame codec_frame(const remesh::QuantFrame& frame) {
-  codec::Frame f;
-  f.bits = frame.bits;
-  f.origin = {frame.origin[0], frame.origin[1], frame.origin[2]};
-  f.step = frame.step;
-  return f;
-}
-
 namespace {
 
 std::vector<uint32_t> flat_triangles(const Mesh& mesh) {
@@ -38,7 +30,7 @@ codec::Result<std::vector<uint8_t>> encode_prm_mesh(const remesh::PrmMesh& prm, 
   std::vector<uint32_t> q(m.positions.size() * 3);
   for (size_t v = 0; v < m.positions.size(); ++v)
     for (int a = 0; a < 3; ++a)
-      q[3 * v + static_cast<size_t>(a)] = static_cast<uint32_t>(prm.frame.quantize(m.positions[v][a], a));
+      q[3 * v + static_cast<size_t>(a)] = prm.frame.quantize(m.positions[v][a], a);
   const std::vector<uint32_t> tris = flat_triangles(m);
   codec::PrmOptions options = given;
   options.grid = prm.lattice.A;
@@ -54,7 +46,7 @@ codec::Result<std::vector<uint8_t>> encode_prm_mesh(const remesh::PrmMesh& prm, 
       }
     options.unrounded = unrounded.data();
   }
-  return codec::encode_prm(q.data(), m.positions.size(), tris.data(), m.triangles.size(), codec_frame(prm.frame),
+  return codec::encode_prm(q.data(), m.positions.size(), tris.data(), m.triangles.size(), prm.frame,
                            options, report);
 }
 
@@ -84,8 +76,7 @@ Mesh to_mesh(const codec::DecodedMesh& decoded) {
   m.positions.resize(n);
   for (size_t v = 0; v < n; ++v)
     for (int a = 0; a < 3; ++a)
-      m.positions[v][a] = codec::dequantize(decoded.quantized[3 * v + static_cast<size_t>(a)],
-                                            decoded.frame.origin[static_cast<size_t>(a)], decoded.frame.step);
+      m.positions[v][a] = decoded.frame.to_real(decoded.quantized[3 * v + static_cast<size_t>(a)], a);
   m.triangles.resize(decoded.num_triangles());
   for (size_t t = 0; t < m.triangles.size(); ++t)
     m.triangles[t] = {decoded.triangles[3 * t], decoded.triangles[3 * t + 1], decoded.triangles[3 * t + 2]};

@@ -37,7 +37,7 @@ PackResult pack_at(const Mesh& source, const MetroReference& reference, const Pa
   // The search measures what the decoder will output: the candidate quantized to the stream's frame (its lattice
   // vertices are exact already; the heights and the other vertices round to the nearest step), or, when the
   // encoder may choose the heights, the candidate encoded and decoded.
-  const remesh::QuantFrame frame = remesh::QuantFrame::of_mesh(source, bits, step_scale);
+  const remesh::QuantFrame frame = remesh::frame_of_mesh(source, bits, step_scale);
   codec::PrmOptions po;
   if (options.height_lambda > 0) {
     po.height_tolerance = kHeightTolerance;

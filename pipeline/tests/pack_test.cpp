@@ -110,7 +110,7 @@ TEST(Pack, SelfOverlappingPatchRoundTrips) {
   in.relief_axis = &axes;
   in.input = &ramp;
   prm::remesh::ResampleOptions o;
-  o.frame = prm::remesh::QuantFrame::of_mesh(ramp, 12);
+  o.frame = prm::remesh::frame_of_mesh(ramp, 12);
   o.grid = 40;
   const prm::remesh::PrmMesh prm = prm::remesh::resample_and_merge(in, o);
   prm::codec::EncodeReport rep;
@@ -261,8 +261,8 @@ TEST(Pack, StepScaleSetsTheStep) {
   const prm::DistanceReport fd = prm::metro_distance(input, prm::pipeline::to_mesh(fixed_decoded.value));
   EXPECT_LE(fd.rel(fd.rms), 5e-4);
 
-  EXPECT_THROW(prm::remesh::QuantFrame::of_mesh(input, 10, 2.0), std::invalid_argument);
-  EXPECT_THROW(prm::remesh::QuantFrame::of_mesh(input, 10, 0.99), std::invalid_argument);
+  EXPECT_THROW(prm::remesh::frame_of_mesh(input, 10, 2.0), std::invalid_argument);
+  EXPECT_THROW(prm::remesh::frame_of_mesh(input, 10, 0.99), std::invalid_argument);
 }
 
 TEST(Pack, PrmFileIsRecognisedByEncodeAnyMesh) {

@@ -42,7 +42,7 @@ std::vector<std::array<int32_t, 3>> face_adjacency(const Mesh& mesh) {
 }
 
 std::array<double, 3> lattice_family(const QuantFrame& frame, const HexLattice& lattice, int pair, const Vec3& p) {
-  const int u = base_u(pair), w = base_w(pair);
+  const int u = pair_u(pair), w = pair_w(pair);
   const auto ab = lattice.to_lattice(frame.to_quant(p[static_cast<size_t>(u)], u),
                                      frame.to_quant(p[static_cast<size_t>(w)], w));
   return {ab[0], ab[1], ab[0] + ab[1]};

@@ -54,7 +54,7 @@ struct LatticeSlot {
 
 SlicedRelief slice_relief(const ReliefMeshView& view, const std::vector<int32_t>& faces, int axis) {
   const int pair = axis_pair(axis);
-  const int hu = base_u(pair), hw = base_w(pair), hh = height_axis(pair);
+  const int hu = pair_u(pair), hw = pair_w(pair), hh = pair_height(pair);
   const Mesh& mesh = *view.mesh;
   const int32_t relief = view.relief(faces.empty() ? 0 : faces[0]);
   const size_t n = faces.size();

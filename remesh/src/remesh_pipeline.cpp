@@ -62,7 +62,7 @@ RemeshResult remesh(const Mesh& input, const RemeshOptions& options, const Error
   in.source_face = &layout.source_face;
   in.input = &input;
   ResampleOptions ro;
-  ro.frame = QuantFrame::of_mesh(input, options.bits, options.step_scale);
+  ro.frame = frame_of_mesh(input, options.bits, options.step_scale);
   ro.max_normal_angle_deg = options.max_normal_angle_deg;
   ro.parallel = options.parallel;
   ro.fit_heights = options.fit_heights;

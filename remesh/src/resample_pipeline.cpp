@@ -57,7 +57,7 @@ PrmMesh resample_and_merge(const LayoutInput& layout, const ResampleOptions& opt
   const auto t0 = std::chrono::steady_clock::now();
   PrmMesh prm;
   prm.frame = options.frame;
-  prm.lattice = HexLattice::with_grid(options.grid);
+  prm.lattice = lattice_of_grid(options.grid, prm.frame.bits);
   prm.relief_axis = *layout.relief_axis;
   ResampleStats& st = prm.stats;
   st.reliefs = layout.relief_axis->size();
@@ -232,7 +232,7 @@ PrmMesh load_prm_labels(Mesh mesh) {
       in >> k1 >> prm.frame.bits >> k2 >> prm.frame.origin[0] >> prm.frame.origin[1] >> prm.frame.origin[2] >> k3 >>
           prm.frame.step >> k4 >> grid;
       if (!in || k1 != "bits" || k2 != "origin" || k3 != "step" || k4 != "grid" || prm.frame.bits < 8 ||
-          prm.frame.bits > 20 || !(prm.frame.step > 0) || grid < 2)
+          prm.frame.bits > 20 || !(prm.frame.step > 0) || !valid_grid_size(grid, prm.frame.bits))
         throw InputError("malformed 'prm-frame' comment: " + c);
       have_frame = true;
     } else if (tag == "prm-relief") {

@@ -56,8 +56,8 @@ void expect_valid_prm(const Mesh& input, const PrmMesh& prm, const std::string& 
     if (r < 0) continue;
     const int pair = axis_pair(prm.relief_axis[static_cast<size_t>(r)]);
     const auto base = prm.lattice.to_base(prm.lattice_i[v], prm.lattice_j[v]);
-    ASSERT_EQ(prm.frame.quantize(prm.mesh.positions[v][static_cast<size_t>(base_u(pair))], base_u(pair)), base[0]) << name;
-    ASSERT_EQ(prm.frame.quantize(prm.mesh.positions[v][static_cast<size_t>(base_w(pair))], base_w(pair)), base[1]) << name;
+    ASSERT_EQ(prm.frame.quantize(prm.mesh.positions[v][static_cast<size_t>(pair_u(pair))], pair_u(pair)), base[0]) << name;
+    ASSERT_EQ(prm.frame.quantize(prm.mesh.positions[v][static_cast<size_t>(pair_w(pair))], pair_w(pair)), base[1]) << name;
   }
   for (size_t f = 0; f < prm.mesh.triangles.size(); ++f) {
     if (!prm.face_regular[f]) continue;
@@ -194,10 +194,10 @@ TEST(Remesh, LeastSquaresHeightsLowerTheError) {
         continue;
       }
       const int pair = axis_pair(prm[0].relief_axis[static_cast<size_t>(prm[0].vertex_relief[v])]);
-      EXPECT_EQ(prm[1].mesh.positions[v][static_cast<size_t>(base_u(pair))],
-                prm[0].mesh.positions[v][static_cast<size_t>(base_u(pair))]);
-      EXPECT_EQ(prm[1].mesh.positions[v][static_cast<size_t>(base_w(pair))],
-                prm[0].mesh.positions[v][static_cast<size_t>(base_w(pair))]);
+      EXPECT_EQ(prm[1].mesh.positions[v][static_cast<size_t>(pair_u(pair))],
+                prm[0].mesh.positions[v][static_cast<size_t>(pair_u(pair))]);
+      EXPECT_EQ(prm[1].mesh.positions[v][static_cast<size_t>(pair_w(pair))],
+                prm[0].mesh.positions[v][static_cast<size_t>(pair_w(pair))]);
     }
     expect_valid_prm(input, prm[1], name);
   }

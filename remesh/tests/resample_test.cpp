@@ -25,7 +25,7 @@ PrmMesh run(const Mesh& m, int64_t grid) {
   in.relief_axis = &axes;
   in.input = &m;
   ResampleOptions o;
-  o.frame = QuantFrame::of_mesh(m, 12);
+  o.frame = frame_of_mesh(m, 12);
   o.grid = grid;
   return resample_and_merge(in, o);
 }
@@ -79,8 +79,8 @@ void expect_exact_lattice(const PrmMesh& prm) {
     if (r < 0) continue;
     const int pair = axis_pair(prm.relief_axis[static_cast<size_t>(r)]);
     const auto base = prm.lattice.to_base(prm.lattice_i[v], prm.lattice_j[v]);
-    ASSERT_EQ(prm.frame.quantize(prm.mesh.positions[v][static_cast<size_t>(base_u(pair))], base_u(pair)), base[0]);
-    ASSERT_EQ(prm.frame.quantize(prm.mesh.positions[v][static_cast<size_t>(base_w(pair))], base_w(pair)), base[1]);
+    ASSERT_EQ(prm.frame.quantize(prm.mesh.positions[v][static_cast<size_t>(pair_u(pair))], pair_u(pair)), base[0]);
+    ASSERT_EQ(prm.frame.quantize(prm.mesh.positions[v][static_cast<size_t>(pair_w(pair))], pair_w(pair)), base[1]);
     ++checked;
   }
   EXPECT_GT(checked, 0u);

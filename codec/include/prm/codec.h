@@ -26,7 +26,16 @@
 #include <string>
 #include <vector>
 
+#include "prm/export.h"
+#include "prm/lattice.h"
+#include "prm/version.h"
+
 namespace prm::codec {
+
+// The library's version, PRM_VERSION_MAJOR * 10000 + PRM_VERSION_MINOR * 100 + PRM_VERSION_PATCH (prm/version.h):
+// compare with PRM_VERSION_NUMBER to detect a header/library mismatch. Not the bitstream's format version (§3.2).
+PRM_API uint32_t library_version();
+PRM_API const char* library_version_string();
 
 // Format version written by this encoder (§3.2). A decoder accepts major version kFormatMajor only.
 constexpr uint8_t kFormatMajor = 1;
@@ -63,7 +72,7 @@ enum class Error : uint8_t {
 };
 
 // A stable lower_snake name for an error ("count_exceeds_stream").
-const char* error_name(Error error);
+PRM_API const char* error_name(Error error);
 
 struct Status {
   Error error = Error::ok;
@@ -80,20 +89,12 @@ struct Result {
   bool ok() const { return status.ok(); }
 };
 
-// §10.1 Quantization frame (docs/ARCHITECTURE.md, "Quantization frame"): q = floor((p - origin) / step + 0.5)
-// clamped to [0, 2^bits - 1]; dequantized p' = origin + q * step (IEEE double).
-struct Frame {
-  int bits = 12;                            // 8..20
-  std::array<double, 3> origin{0, 0, 0};
-  double step = 1.0;                        // > 0 and finite
-};
+// §10.1 The quantization frame (Frame, quantize, dequantize) and the lattices of §8.1 are in prm/lattice.h.
 
 // The frame ARCHITECTURE.md prescribes for positions xyz[3 * n]: origin = min corner of the bounding box,
-// step = largest extent / (2^bits - 1) (1.0 when all points coincide).
-Frame make_frame(const double* xyz, size_t num_vertices, int bits);
-Frame make_frame(const float* xyz, size_t num_vertices, int bits);
-uint32_t quantize(double p, double origin, double step, int bits);
-inline double dequantize(uint32_t q, double origin, double step) { return origin + static_cast<double>(q) * step; }
+// step = largest extent / (2^bits - 1) (1.0 when all points coincide); frame_of_points() of prm/lattice.h.
+PRM_API Frame make_frame(const double* xyz, size_t num_vertices, int bits);
+PRM_API Frame make_frame(const float* xyz, size_t num_vertices, int bits);
 
 struct EncodeOptions {
   int position_bits = 12;  // 8..20; ignored by encode_quantized (the frame gives the bits)
@@ -133,16 +134,16 @@ struct EncodeReport {
 
 // Encodes triangles[3 * num_triangles] (vertex indices) over positions xyz[3 * num_vertices], quantized to
 // options.position_bits bits in make_frame()'s frame. `report` may be null.
-Result<std::vector<uint8_t>> encode(const float* xyz, size_t num_vertices, const uint32_t* triangles,
+PRM_API Result<std::vector<uint8_t>> encode(const float* xyz, size_t num_vertices, const uint32_t* triangles,
                                     size_t num_triangles, const EncodeOptions& options = {},
                                     EncodeReport* report = nullptr);
-Result<std::vector<uint8_t>> encode(const double* xyz, size_t num_vertices, const uint32_t* triangles,
+PRM_API Result<std::vector<uint8_t>> encode(const double* xyz, size_t num_vertices, const uint32_t* triangles,
                                     size_t num_triangles, const EncodeOptions& options = {},
                                     EncodeReport* report = nullptr);
 // Pre-quantized positions q[3 * num_vertices], each in [0, 2^frame.bits - 1], in the caller's frame (the PRM
 // remesher's frame, so that lattice points stay exact).
 // seam_context: as EncodeOptions::seam_context.
-Result<std::vector<uint8_t>> encode_quantized(const uint32_t* q, size_t num_vertices, const uint32_t* triangles,
+PRM_API Result<std::vector<uint8_t>> encode_quantized(const uint32_t* q, size_t num_vertices, const uint32_t* triangles,
                                               size_t num_triangles, const Frame& frame,
                                               EncodeReport* report = nullptr, int seam_context = -1);
 
@@ -186,7 +187,7 @@ struct PrmOptions {
 // triangle that faces its axis), sends the others by LERS traversals (§7), the regular patches' headers and
 // heights (§8, §9) and the remaining vertices by prediction (§10). A mesh without regular triangles is encoded as
 // encode_quantized does. decode() reads both.
-Result<std::vector<uint8_t>> encode_prm(const uint32_t* q, size_t num_vertices, const uint32_t* triangles,
+PRM_API Result<std::vector<uint8_t>> encode_prm(const uint32_t* q, size_t num_vertices, const uint32_t* triangles,
                                         size_t num_triangles, const Frame& frame, const PrmOptions& options,
                                         EncodeReport* report = nullptr);
 
@@ -213,7 +214,7 @@ struct DecodedMesh {
   size_t num_triangles() const { return triangles.size() / 3; }
 };
 
-Result<DecodedMesh> decode(const uint8_t* data, size_t size, const DecodeOptions& options = {});
+PRM_API Result<DecodedMesh> decode(const uint8_t* data, size_t size, const DecodeOptions& options = {});
 
 // The container of a stream (§3), for `prm info`: header fields and every section's place and size. Checks the
 // magic, version, header ranges, section framing and the CRC; does not decode the sections.
@@ -234,6 +235,6 @@ struct StreamInfo {
   uint32_t crc = 0;
   uint64_t total_bytes = 0;
 };
-Result<StreamInfo> inspect(const uint8_t* data, size_t size);
+PRM_API Result<StreamInfo> inspect(const uint8_t* data, size_t size);
 
 }  // namespace prm::codec

@@ -10,11 +10,9 @@
 
 namespace prm::pipeline {
 
-// The codec's frame for the remesher's quantization frame (same origin, step and bits: lattice points stay exact).
-codec::Frame codec_frame(const remesh::QuantFrame& frame);
-
-// Encodes a piecewise regular mesh: positions quantized in the PRM's own frame (docs/ARCHITECTURE.md), so that grid
-// vertices are lattice points in the integer coordinates the codec sees.
+// Encodes a piecewise regular mesh: positions quantized in the PRM's own frame (docs/ARCHITECTURE.md; the remesher's
+// frame is the codec's, prm/lattice.h), so that grid vertices are lattice points in the integer coordinates the codec
+// sees.
 // `options`: the height coding (§9.4, §9.7); its grid is the PRM's.
 codec::Result<std::vector<uint8_t>> encode_prm_mesh(const remesh::PrmMesh& prm, codec::EncodeReport* report,
                                                     const codec::PrmOptions& options = {});

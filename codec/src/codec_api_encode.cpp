@@ -1,4 +1,5 @@
-// The public entry points of prm/codec.h: encode, decode, inspect, frames. Nothing throws out of here.
+// The encoding entry points of prm/codec.h: make_frame, encode, encode_quantized, encode_prm (prm_codec only; the
+// decoder's are in codec_api_decode.cpp). Nothing throws out of here.
 #include <algorithm>
 #include <cmath>
 #include <new>
@@ -16,67 +17,7 @@
 
 namespace prm::codec {
 
-// §4.4 Error names.
-const char* error_name(Error error) {
-  switch (error) {
-    case Error::ok: return "ok";
-    case Error::invalid_argument: return "invalid_argument";
-    case Error::degenerate_triangle: return "degenerate_triangle";
-    case Error::non_manifold_edge: return "non_manifold_edge";
-    case Error::inconsistent_orientation: return "inconsistent_orientation";
-    case Error::non_manifold_vertex: return "non_manifold_vertex";
-    case Error::truncated: return "truncated";
-    case Error::bad_magic: return "bad_magic";
-    case Error::unsupported_version: return "unsupported_version";
-    case Error::bad_header: return "bad_header";
-    case Error::bad_section: return "bad_section";
-    case Error::unsupported_feature: return "unsupported_feature";
-    case Error::count_exceeds_limit: return "count_exceeds_limit";
-    case Error::count_exceeds_stream: return "count_exceeds_stream";
-    case Error::bad_connectivity: return "bad_connectivity";
-    case Error::non_manifold_result: return "non_manifold_result";
-    case Error::bad_position: return "bad_position";
-    case Error::trailing_bytes: return "trailing_bytes";
-    case Error::crc_mismatch: return "crc_mismatch";
-    case Error::out_of_memory: return "out_of_memory";
-    case Error::internal: return "internal";
-  }
-  return "unknown";
-}
-
-// §10.1 Quantization.
-uint32_t quantize(double p, double origin, double step, int bits) {
-  const double qmax = static_cast<double>((uint64_t{1} << bits) - 1);
-  double x = std::floor((p - origin) / step + 0.5);
-  if (!(x >= 0)) x = 0;  // also NaN
-  if (x > qmax) x = qmax;
-  return static_cast<uint32_t>(x);
-}
-
 namespace {
-
-template <typename T>
-Frame make_frame_t(const T* xyz, size_t n, int bits) {
-  Frame f;
-  f.bits = bits;
-  if (n == 0) return f;
-  double lo[3], hi[3];
-  for (int k = 0; k < 3; ++k) lo[k] = hi[k] = static_cast<double>(xyz[k]);
-  for (size_t i = 1; i < n; ++i)
-    for (int k = 0; k < 3; ++k) {
-      const double v = static_cast<double>(xyz[3 * i + k]);
-      lo[k] = std::min(lo[k], v);
-      hi[k] = std::max(hi[k], v);
-    }
-  double extent = 0;
-  for (int k = 0; k < 3; ++k) {
-    f.origin[k] = lo[k];
-    extent = std::max(extent, hi[k] - lo[k]);
-  }
-  const double qmax = static_cast<double>((uint64_t{1} << bits) - 1);
-  f.step = extent > 0 ? extent / qmax : 1.0;
-  return f;
-}
 
 Status check_frame(const Frame& f) {
   if (f.bits < kMinPositionBits || f.bits > kMaxPositionBits)
@@ -96,7 +37,7 @@ Status encode_impl(const uint32_t* q, size_t nv, const uint32_t* tris, size_t nt
   if (seam_context < -1 || seam_context > 1)
     return make_status(Error::invalid_argument, "6.5.2", 0, "seam context must be -1 (the smaller), 0 or 1");
   if (prm) {
-    if (prm->grid < 2 || prm->grid > (int64_t{1} << frame.bits))
+    if (!valid_grid_size(prm->grid, frame.bits))
       return make_status(Error::invalid_argument, "8.4", 0, "grid size must be 2..2^bits quantization steps");
     if (prm->height_depth < -1 || prm->height_depth > kHeightDepthPredicted)
       return make_status(Error::invalid_argument, "9.4", 0, "height depth must be 0..7 (or -1: best)");
@@ -296,7 +237,7 @@ Result<std::vector<uint8_t>> encode_float(const T* xyz, size_t nv, const uint32_
                                  "vertex " + std::to_string(i / 3) + " has a non-finite coordinate");
         return res;
       }
-    const Frame frame = make_frame_t(xyz, nv, options.position_bits);
+    const Frame frame = frame_of_points(xyz, nv, options.position_bits);
     std::vector<uint32_t> q(3 * nv);
     for (size_t i = 0; i < 3 * nv; ++i)
       q[i] = quantize(static_cast<double>(xyz[i]), frame.origin[i % 3], frame.step, frame.bits);
@@ -312,8 +253,8 @@ Result<std::vector<uint8_t>> encode_float(const T* xyz, size_t nv, const uint32_
 
 }  // namespace
 
-Frame make_frame(const double* xyz, size_t n, int bits) { return make_frame_t(xyz, n, bits); }
-Frame make_frame(const float* xyz, size_t n, int bits) { return make_frame_t(xyz, n, bits); }
+Frame make_frame(const double* xyz, size_t n, int bits) { return frame_of_points(xyz, n, bits); }
+Frame make_frame(const float* xyz, size_t n, int bits) { return frame_of_points(xyz, n, bits); }
 
 Result<std::vector<uint8_t>> encode(const float* xyz, size_t nv, const uint32_t* tris, size_t nt,
                                     const EncodeOptions& options, EncodeReport* report) {
@@ -350,102 +291,6 @@ Result<std::vector<uint8_t>> encode_prm(const uint32_t* q, size_t nv, const uint
     res.status = make_status(Error::internal, "", 0, "unexpected exception");
   }
   if (!res.ok()) res.value.clear();
-  return res;
-}
-
-Result<DecodedMesh> decode(const uint8_t* data, size_t size, const DecodeOptions& options) {
-  Result<DecodedMesh> res;
-  try {
-    Container c;
-    res.status = read_container(data, size, c);
-    if (!res.ok()) return res;
-    const Header& h = c.header;
-    // §4.1 The header's counts against the caller's limits, before anything is allocated.
-    if (h.vertices > options.limits.max_vertices || h.triangles > options.limits.max_triangles) {
-      res.status = make_status(Error::count_exceeds_limit, "4.1", 8,
-                               "the stream has " + std::to_string(h.vertices) + " vertices and " +
-                                   std::to_string(h.triangles) + " triangles, beyond the caller's limits");
-      return res;
-    }
-    const Section* cs = c.find(kSectionConnectivity);
-    const Section* ps = c.find(kSectionPositions);
-    ClosedMesh mesh;
-    res.status = read_connectivity(data + cs->offset, cs->size, cs->offset, options.limits, h.vertices,
-                                   h.triangles, (h.flags & kFlagClersSeam) != 0, mesh);
-    if (!res.ok()) return res;
-    std::vector<uint32_t> q;
-    const Section* is = c.find(kSectionIrregular);
-    const Section* pts = c.find(kSectionPatches);
-    if (is && pts) {  // §2 a PRM: irregular triangles, patches, then the other vertices
-      std::vector<uint8_t> cls, known;
-      res.status = read_irregular_triangles(data + is->offset, is->size, is->offset, mesh,
-                                            (h.flags & kFlagLersValence) != 0, cls);
-      if (!res.ok()) return res;
-      res.status = read_patches(data + pts->offset, pts->size, pts->offset, mesh, h.frame.bits, h.bbox_min,
-                                h.bbox_max, (h.flags & kFlagPatchContexts) != 0, cls, q, known);
-      if (!res.ok()) return res;
-      res.status = read_positions(data + ps->offset, ps->size, ps->offset, mesh, h.bbox_min, h.bbox_max, q, &known);
-    } else {
-      res.status = read_positions(data + ps->offset, ps->size, ps->offset, mesh, h.bbox_min, h.bbox_max, q);
-    }
-    if (!res.ok()) return res;
-    DecodedMesh& out = res.value;
-    out.frame = h.frame;
-    if (mesh.num_vertices == h.vertices) {  // no dummies: the closed mesh is the output (§6.7)
-      out.triangles = std::move(mesh.corner_vertex);
-      out.quantized = std::move(q);
-    } else {
-      out.triangles = std::move(mesh.output_triangles);
-      out.quantized.resize(size_t{3} * h.vertices);
-      for (uint32_t v = 0; v < mesh.num_vertices; ++v) {
-        const uint32_t n = mesh.old_to_new[v];
-        if (n == UINT32_MAX) continue;
-        for (int k = 0; k < 3; ++k) out.quantized[3 * size_t{n} + k] = q[3 * size_t{v} + k];
-      }
-    }
-    // §10.5 Output positions: o + q * s in double, rounded to float for float32 output.
-    if (options.positions == PositionOutput::float32) {
-      out.positions_f32.resize(out.quantized.size());
-      for (size_t i = 0; i < out.quantized.size(); ++i)
-        out.positions_f32[i] = static_cast<float>(dequantize(out.quantized[i], h.frame.origin[i % 3], h.frame.step));
-    } else if (options.positions == PositionOutput::float64) {
-      out.positions_f64.resize(out.quantized.size());
-      for (size_t i = 0; i < out.quantized.size(); ++i)
-        out.positions_f64[i] = dequantize(out.quantized[i], h.frame.origin[i % 3], h.frame.step);
-    }
-  } catch (const std::bad_alloc&) {
-    res.status = make_status(Error::out_of_memory, "4", 0, "out of memory");
-  } catch (...) {
-    res.status = make_status(Error::internal, "", 0, "unexpected exception");
-  }
-  if (!res.ok()) res.value = DecodedMesh{};
-  return res;
-}
-
-Result<StreamInfo> inspect(const uint8_t* data, size_t size) {
-  Result<StreamInfo> res;
-  try {
-    Container c;
-    res.status = read_container(data, size, c);
-    if (!res.ok()) return res;
-    StreamInfo& s = res.value;
-    s.version_major = c.header.version_major;
-    s.version_minor = c.header.version_minor;
-    s.flags = c.header.flags;
-    s.vertices = c.header.vertices;
-    s.triangles = c.header.triangles;
-    s.frame = c.header.frame;
-    s.bbox_min = c.header.bbox_min;
-    s.bbox_max = c.header.bbox_max;
-    s.header_bytes = c.header_bytes;
-    for (const Section& sec : c.sections) s.sections.push_back({sec.id, section_name(sec.id), sec.offset, sec.size});
-    s.crc = c.crc;
-    s.total_bytes = size;
-  } catch (const std::bad_alloc&) {
-    res.status = make_status(Error::out_of_memory, "4", 0, "out of memory");
-  } catch (...) {
-    res.status = make_status(Error::internal, "", 0, "unexpected exception");
-  }
   return res;
 }
 
