@@ -26,6 +26,7 @@ install(FILES "${PROJECT_BINARY_DIR}/prmConfig.cmake" "${PROJECT_BINARY_DIR}/prm
 
 # pkg-config: paths relative to the .pc file, so that the installed tree can move (cmake --install --prefix).
 file(RELATIVE_PATH PRM_PC_TO_PREFIX "/prefix/${CMAKE_INSTALL_LIBDIR}/pkgconfig" "/prefix")
+string(REGEX REPLACE "/$" "" PRM_PC_TO_PREFIX "${PRM_PC_TO_PREFIX}")
 if(BUILD_SHARED_LIBS)
   set(PRM_PC_LIBS_PRIVATE "")
   set(PRM_PC_CFLAGS "")
