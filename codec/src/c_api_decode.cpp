@@ -91,8 +91,8 @@ prm_status prm_decode(const uint8_t* data, size_t size, const prm_decode_limits*
                        ("prm_decode: the stream decodes to " + std::to_string(nv) + " coordinates and " +
                         std::to_string(nt) + " indices, more than the buffers hold")
                            .c_str());
-    const Result<DecodedMesh> r =
-        decode(data, size, decode_options(limits, positions ? PositionOutput::float32 : PositionOutput::quantized_only));
+    const PositionOutput output = positions ? PositionOutput::float32 : PositionOutput::quantized_only;
+    const Result<DecodedMesh> r = decode(data, size, decode_options(limits, output));
     if (!r.ok()) return set_error(error, r.status);
     if (positions && !r.value.positions_f32.empty())
       std::memcpy(positions, r.value.positions_f32.data(), r.value.positions_f32.size() * sizeof(float));

@@ -8,7 +8,8 @@ namespace prm::remesh {
 QuantFrame frame_of_mesh(const Mesh& mesh, int bits, double step_scale) {
   if (bits < codec::kMinPositionBits || bits > codec::kMaxPositionBits)
     throw std::invalid_argument("quantization bits must be in 8..20");
-  if (!(step_scale >= 1.0 && step_scale < 2.0)) throw std::invalid_argument("the quantization step scale must be in [1, 2)");
+  if (!(step_scale >= 1.0 && step_scale < 2.0))
+    throw std::invalid_argument("the quantization step scale must be in [1, 2)");
   return codec::frame_of_points(mesh.positions.empty() ? nullptr : mesh.positions[0].data(), mesh.positions.size(),
                                 bits, step_scale);
 }
