@@ -143,8 +143,7 @@ Status read_connectivity(const uint8_t* data, size_t size, uint64_t offset, cons
                        std::to_string(coded) + " symbols cannot be coded in " + std::to_string(clers_size) +
                            " bytes");
 
-  mesh.is_dummy.assign(nv, 0);
-  for (uint32_t d : dummies) mesh.is_dummy[d] = 1;
+  // §4.5 Nothing below is sized by nt or nv before the triangles are decoded: Spirale Reversi grows as it goes.
   SpiraleReversi sr;
   sr.init(nt, nv);
   RangeDecoder rc;
@@ -200,6 +199,8 @@ Status read_connectivity(const uint8_t* data, size_t size, uint64_t offset, cons
                        clers_offset, sr.error());
   mesh.num_vertices = nv;
   mesh.opp = std::move(sr.opposites());
+  mesh.is_dummy.assign(nv, 0);  // nv vertices are decoded now (§6.4.8)
+  for (uint32_t d : dummies) mesh.is_dummy[d] = 1;
 
   if (num_dummies == 0) {
     if (nt != header_triangles)

@@ -4,24 +4,29 @@
 
 namespace prm::codec {
 
-// §6.4.1 Initial state: every edge open, no records, empty stack.
+// §6.4.1 Initial state: every edge open, no records, empty stack. Nothing is sized by the claimed counts (§4.5).
 void SpiraleReversi::init(uint32_t num_triangles, uint32_t num_vertices) {
   num_triangles_ = num_triangles;
   num_vertices_ = num_vertices;
-  opp_.assign(size_t{3} * num_triangles, -1);
-  rec_.assign(size_t{3} * num_triangles, 0);
+  opp_.reset(size_t{3} * num_triangles, -1);
+  rec_.reset(size_t{3} * num_triangles, 0);
   parent_.clear();
   count_.clear();
   id_.clear();
-  const size_t expect = size_t{num_triangles} / 2 + 16;
-  parent_.reserve(expect);
-  count_.reserve(expect);
-  id_.reserve(expect);
   stack_.clear();
   closed_ = 0;
   decoded_ = 0;
   error_.clear();
   non_manifold_ = false;
+}
+
+void SpiraleReversi::reserve_all() {
+  opp_.reserve_tail(size_t{3} * num_triangles_);
+  rec_.reserve_tail(size_t{3} * num_triangles_);
+  const size_t expect = size_t{num_triangles_} / 2 + 16;
+  parent_.reserve(expect);
+  count_.reserve(expect);
+  id_.reserve(expect);
 }
 
 bool SpiraleReversi::fail(const char* message) {
@@ -99,6 +104,7 @@ bool SpiraleReversi::close_vertex(uint32_t record) {
 // §6.4.3-6.4.5 One symbol applied to triangle t (corners 3t: a, 3t+1: b, 3t+2: v; gate a->b, right edge b->v,
 // left edge v->a).
 bool SpiraleReversi::apply(uint32_t t, uint8_t symbol) {
+  if (!add_triangle(t)) return false;
   const uint32_t a = 3 * t, b = a + 1, v = a + 2;
   ++decoded_;
   if (symbol == kE) {  // §6.4.3 a new piece of one triangle
@@ -165,9 +171,12 @@ bool SpiraleReversi::apply(uint32_t t, uint8_t symbol) {
 // §6.4.6 An S whose left branch was consumed by its right branch: attach the right edge to the top piece, and glue
 // the left edge to the named edge of a later triangle of the same piece.
 bool SpiraleReversi::apply_handle(uint32_t t, const HandleEvent& event, uint32_t component_end) {
+  if (!add_triangle(t)) return false;
   ++decoded_;
   if (stack_.empty()) return fail("handle S with no piece to attach to");
-  if (event.partner <= t || event.partner >= component_end || event.partner_corner > 2)
+  // partner > t: a triangle decoded already.
+  if (event.partner <= t || event.partner >= component_end || event.partner >= num_triangles_ ||
+      event.partner_corner > 2)
     return fail("handle partner outside the component");
   const uint32_t pc = 3 * event.partner + event.partner_corner;
   if (opp_[pc] >= 0) return fail("handle partner edge already glued");
@@ -192,6 +201,7 @@ bool SpiraleReversi::apply_handle(uint32_t t, const HandleEvent& event, uint32_t
 
 // §6.4.7 The first triangle of a component closes its only piece, whose open boundary must be three edges.
 bool SpiraleReversi::close_component(uint32_t t0) {
+  if (!add_triangle(t0)) return false;
   ++decoded_;
   if (stack_.size() != 1) return fail("a component does not end with exactly one piece");
   const uint32_t j = stack_.back();
@@ -232,22 +242,23 @@ bool SpiraleReversi::finish(std::vector<uint32_t>& corner_vertex) {
     if (id < 0) return fail("a vertex is never closed");
     id_[r] = id;
   }
-  const size_t nc = size_t{3} * num_triangles_;
-  corner_vertex.resize(nc);
+  if (decoded_ != num_triangles_ || opp_.first() != 0) return fail("triangles missing");
+  const size_t nt = num_triangles_;
   non_manifold_ = true;
-  for (size_t t = 0; t < num_triangles_; ++t) {
-    const size_t c = 3 * t;
+  for (size_t c = 0; c < 3 * nt; c += 3) {
     if ((opp_[c] | opp_[c + 1] | opp_[c + 2]) < 0) {
       non_manifold_ = false;
       return fail("an edge is left open");
     }
-    const uint32_t a = static_cast<uint32_t>(id_[rec_[c]]), b = static_cast<uint32_t>(id_[rec_[c + 1]]),
-                   v = static_cast<uint32_t>(id_[rec_[c + 2]]);
-    if (a == b || b == v || a == v) return fail("a decoded triangle uses a vertex twice");
-    corner_vertex[c] = a;
-    corner_vertex[c + 1] = b;
-    corner_vertex[c + 2] = v;
+    for (size_t i = c; i < c + 3; ++i) rec_[i] = static_cast<uint32_t>(id_[rec_[i]]);  // records become ids
+    if (rec_[c] == rec_[c + 1] || rec_[c + 1] == rec_[c + 2] || rec_[c] == rec_[c + 2])
+      return fail("a decoded triangle uses a vertex twice");
   }
+  corner_vertex.swap(rec_.all());
+  rec_.reset(0, 0);
+  std::vector<uint32_t>().swap(parent_);  // the records are done with
+  std::vector<uint32_t>().swap(count_);
+  std::vector<int32_t>().swap(id_);
   // Every glued edge joins corners of the same records at both ends and records only merge through a triangle
   // glued to both (§6.4.2), so each vertex is one closed fan. That no two edges join the same pair of vertices is
   // checked while the fans are walked for the positions (§6.8, §10.3).

@@ -7,6 +7,9 @@
 // State (§6.4.1): for every corner its opposite corner (-1 while its edge is open) and its vertex record; vertex
 // records are merged by union-find and carry a triangle count and, once closed, a vertex id; a stack of pieces, each
 // named by the triangle whose gate is the piece's open gate.
+//
+// §4.5 Memory grows with what is decoded, not with the counts the stream claims: the per-corner tables hold only the
+// triangles decoded so far (tail_table.h), and the vertex records are created as symbols create them.
 #pragma once
 
 #include <cstdint>
@@ -14,6 +17,7 @@
 #include <vector>
 
 #include "clers_shared.h"
+#include "tail_table.h"
 
 namespace prm::codec {
 
@@ -25,8 +29,11 @@ struct HandleEvent {     // §6.4.6
 
 class SpiraleReversi {
  public:
-  // §6.4.1 Allocates for `num_triangles` triangles and `num_vertices` vertices (the closed mesh, dummies included).
+  // §6.4.1 Starts a closed mesh of `num_triangles` triangles and `num_vertices` vertices (dummies included); allocates
+  // nothing in proportion to them (§4.5).
   void init(uint32_t num_triangles, uint32_t num_vertices);
+  // Room for every triangle at once, for a caller that trusts its counts (the encoder).
+  void reserve_all();
 
   // §6.5.2 Context inputs for the next symbol.
   uint32_t stack_depth() const { return static_cast<uint32_t>(stack_.size()); }
@@ -36,7 +43,8 @@ class SpiraleReversi {
   // §6.5.2 Seam: 1 if a closed vertex of the decoded fan of the gate's start vertex has a valence other than 6.
   uint32_t gate_start_seam();
 
-  // §6.4.3-6.4.7 One step each; false (with error() set) when the operation is impossible.
+  // §6.4.3-6.4.7 One step each, for t = T - 1 down to 0 in turn; false (with error() set) when the operation is
+  // impossible.
   bool apply(uint32_t t, uint8_t symbol);
   bool apply_handle(uint32_t t, const HandleEvent& event, uint32_t component_end);
   bool close_component(uint32_t t0);
@@ -44,8 +52,9 @@ class SpiraleReversi {
   // §6.4.8 Final vertex ids per corner (3 per triangle, canonical corner order) and validation (§6.8).
   bool finish(std::vector<uint32_t>& corner_vertex);
 
-  const std::vector<int32_t>& opposites() const { return opp_; }
-  std::vector<int32_t>& opposites() { return opp_; }
+  // All the opposite corners, once every triangle is applied.
+  const std::vector<int32_t>& opposites() const { return opp_.all(); }
+  std::vector<int32_t>& opposites() { return opp_.all(); }
   const std::string& error() const { return error_; }
   bool error_is_non_manifold() const { return non_manifold_; }
 
@@ -74,13 +83,22 @@ class SpiraleReversi {
   }
   bool close_vertex(uint32_t record);
   bool fail(const char* message);
+  // Triangle t joins the tables; false unless it is the next one in decoding order.
+  bool add_triangle(uint32_t t) {
+    if (t >= num_triangles_ || decoded_ != num_triangles_ - 1 - t) return fail("triangles applied out of order");
+    if (size_t{3} * t < opp_.first()) {  // both tables hold the same corners
+      opp_.extend_to(size_t{3} * t);
+      rec_.extend_to(size_t{3} * t);
+    }
+    return true;
+  }
   // Corner whose opposite edge is the open edge ending at the vertex of corner c (rotating away from c's outgoing
   // edge), or -1.
   int64_t open_edge_into(uint32_t c);
   int64_t open_edge_out_of(uint32_t c);
 
-  std::vector<int32_t> opp_;
-  std::vector<uint32_t> rec_;
+  TailTable<int32_t> opp_;
+  TailTable<uint32_t> rec_;
   std::vector<uint32_t> parent_, count_;
   std::vector<int32_t> id_;
   std::vector<uint32_t> stack_;

@@ -25,6 +25,10 @@ std::string height_coding(const codec::EncodeReport& rep) {
 
 void add_encode_command(CLI::App& root) {
   auto* cmd = root.add_subcommand("encode", "Compress a triangle mesh (OBJ/PLY/OFF/STL/glTF) into a .prm stream");
+  cmd->footer(
+      "A stream holds triangles and the vertices they use (spec §6.1): faces with a repeated vertex and vertices no\n"
+      "face uses are dropped, and the report counts them (--json: \"dropped\"), with the vertices welded (STL, glTF)\n"
+      "and the polygons triangulated on reading. A mesh that is not manifold is refused (exit 2).");
   struct Options {
     std::string input, output;
     int bits = 12;
@@ -41,7 +45,8 @@ void add_encode_command(CLI::App& root) {
       ->check(CLI::IsMember({"1.2", "1.3", "1.4"}));
   cmd->add_flag("--json", opt->json, "Print the report as one JSON object");
   cmd->callback([opt] {
-    const Mesh mesh = read_mesh(opt->input);
+    ReadReport rr;
+    const Mesh mesh = read_mesh(opt->input, {}, &rr);
     codec::EncodeReport rep;
     bool was_prm = false;
     const auto t0 = std::chrono::steady_clock::now();
@@ -55,6 +60,8 @@ void add_encode_command(CLI::App& root) {
     const auto header = codec::inspect(enc.value.data(), enc.value.size());
     const int bits = header.ok() ? header.value.frame.bits : opt->bits;  // a PRM keeps its own frame
     const double v = rep.vertices ? rep.vertices : 1;
+    // What reading and encoding left out of the stream (nothing is dropped silently).
+    const size_t degenerate = rr.degenerate_dropped, unreferenced = rr.unreferenced_dropped + rep.unreferenced_dropped;
     if (opt->json) {
       nlohmann::json j = {{"input", opt->input},
                           {"output", opt->output},
@@ -65,7 +72,15 @@ void add_encode_command(CLI::App& root) {
                           {"components", rep.components},
                           {"holes", rep.holes},
                           {"genus_total", rep.handles},
-                          {"unreferenced_dropped", rep.unreferenced_dropped},
+                          {"unreferenced_dropped", unreferenced},
+                          {"dropped",
+                           {{"faces_with_repeated_vertex", degenerate}, {"unreferenced_vertices", unreferenced}}},
+                          {"read",
+                           {{"file_vertices", rr.file_vertices},
+                            {"file_faces", rr.file_faces},
+                            {"polygons_triangulated", rr.polygons_triangulated},
+                            {"strip_triangles", rr.strip_triangles},
+                            {"vertices_welded", rr.vertices_welded}}},
                           {"bytes",
                            {{"total", rep.total_bytes},
                             {"header", rep.header_bytes},
@@ -93,7 +108,9 @@ void add_encode_command(CLI::App& root) {
                   rep.total_bytes, 8.0 * rep.total_bytes / v);
       std::printf("  %u vertices, %u triangles, %u component(s), %u hole(s), total genus %u", rep.vertices,
                   rep.triangles, rep.components, rep.holes, rep.handles);
-      if (rep.unreferenced_dropped) std::printf(", %u unreferenced vertices dropped", rep.unreferenced_dropped);
+      std::printf("\n  dropped: faces with a repeated vertex %zu, unreferenced vertices %zu", degenerate, unreferenced);
+      if (rr.vertices_welded) std::printf("; %zu vertices welded", rr.vertices_welded);
+      if (rr.polygons_triangulated) std::printf("; %zu polygons triangulated", rr.polygons_triangulated);
       if (was_prm)
         std::printf("\n  piecewise regular: %u of %u triangles regular in %u patches (heights: %s); irregular "
                     "triangles %zu B (%.3f bpv), patches %zu B (%.3f bpv)",

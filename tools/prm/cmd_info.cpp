@@ -12,6 +12,9 @@ namespace prm::cli {
 
 void add_info_command(CLI::App& root) {
   auto* cmd = root.add_subcommand("info", "Validate a mesh file (or a .prm stream) and report on it");
+  cmd->footer(
+      "A .prm stream is decoded in full: one that does not decode (framing, CRC or any section) is invalid input,\n"
+      "exit 2, with the error's name, byte offset and spec section (--json: \"error\"), after what could be read.");
   struct Options {
     std::string input;
     bool json = false;

@@ -62,13 +62,41 @@ std::string describe_byte_split(const nlohmann::json& split, size_t vertices) {
   return buf;
 }
 
+namespace {
+
+// The error of a stream that does not decode: spec §4.4's name, where it was found and the rule it breaks.
+nlohmann::json error_json(const codec::Status& s) {
+  return {{"name", codec::error_name(s.error)},
+          {"byte_offset", s.byte_offset},
+          {"spec_section", s.spec_section ? s.spec_section : ""},
+          {"message", s.message}};
+}
+
+[[noreturn]] void invalid_stream(const std::string& path, const codec::Status& s) {
+  throw InputError("'" + path + "' is not a valid PRM stream: " + describe(s));
+}
+
+}  // namespace
+
 void print_prm_stream_info(const std::string& path, bool json) {
   const std::vector<uint8_t> bytes = read_file_bytes(path);
   const auto info = codec::inspect(bytes.data(), bytes.size());
-  if (!info.ok()) throw InputError("'" + path + "' is not a valid PRM stream: " + describe(info.status));
+  if (!info.ok()) {
+    if (json)
+      std::printf("%s\n", nlohmann::json{{"file", path},
+                                         {"format", "prm"},
+                                         {"total_bytes", bytes.size()},
+                                         {"decodes", false},
+                                         {"decode_error", describe(info.status)},
+                                         {"error", error_json(info.status)}}
+                               .dump()
+                               .c_str());
+    invalid_stream(path, info.status);
+  }
   const codec::StreamInfo& s = info.value;
-  // Decoding tells the section contents apart (components, holes); a stream whose container is fine but whose
-  // sections do not decode is still described, with the error.
+  // The container is described whatever its sections hold; a stream is valid only if it decodes (the decoder's
+  // memory follows what it decodes, spec §4.5, so a lying stream costs little here too). One that does not is
+  // described with its error and is invalid input (exit 2).
   const auto dec = codec::decode(bytes.data(), bytes.size(), {});
   const double v = s.vertices ? s.vertices : 1;
   if (json) {
@@ -98,8 +126,12 @@ void print_prm_stream_info(const std::string& path, bool json) {
         {"bits_per_vertex", 8.0 * s.total_bytes / v},
         {"byte_split", stream_byte_split(bytes)},
         {"decodes", dec.ok()}};
-    if (!dec.ok()) j["decode_error"] = describe(dec.status);
+    if (!dec.ok()) {
+      j["decode_error"] = describe(dec.status);
+      j["error"] = error_json(dec.status);
+    }
     std::printf("%s\n", j.dump().c_str());
+    if (!dec.ok()) invalid_stream(path, dec.status);
     return;
   }
   std::printf("%s: PRM stream, format %u.%u, %llu bytes (%.3f bits/vertex)\n", path.c_str(), s.version_major,
@@ -118,10 +150,13 @@ void print_prm_stream_info(const std::string& path, bool json) {
   std::printf("  %-14s %10llu %10d   CRC-32 %08X\n", "crc", static_cast<unsigned long long>(s.total_bytes - 4), 4,
               s.crc);
   std::printf("  byte split: %s\n", describe_byte_split(stream_byte_split(bytes), s.vertices).c_str());
-  if (dec.ok())
+  if (dec.ok()) {
     std::printf("  decodes: yes\n");
-  else
-    std::printf("  decodes: no: %s\n", describe(dec.status).c_str());
+    return;
+  }
+  std::printf("  decodes: no: %s\n", describe(dec.status).c_str());
+  std::fflush(stdout);
+  invalid_stream(path, dec.status);
 }
 
 }  // namespace prm::cli

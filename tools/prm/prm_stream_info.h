@@ -11,7 +11,9 @@
 namespace prm::cli {
 
 bool is_prm_stream_path(const std::string& path);
-// Prints the report (text, or one JSON object); throws prm::InputError for a malformed stream.
+// Prints the report (text, or one JSON object); throws prm::InputError (exit 2) for a stream that does not decode,
+// after printing what it could (with --json, an object whose "error" holds the error's name, byte offset and spec
+// section).
 void print_prm_stream_info(const std::string& path, bool json);
 
 // The stream's bytes in the three parts the paper's Table 1 reports (issue 6): connectivity (CLERS, §6),
