@@ -153,6 +153,8 @@ Status read_connectivity(const uint8_t* data, size_t size, uint64_t offset, cons
   uint32_t h = num_handles;
   uint32_t prev1 = kE, prev2 = kE;
   auto fail = [&](const char* section) {
+    if (rc.bad_start())
+      return make_status(Error::bad_section, "5.6", clers_offset, "range-coded data starting with FF FF FF FF");
     if (rc.failed())
       return make_status(Error::truncated, "5.5", clers_offset + clers_size, "the CLERS symbols end early");
     return make_status(Error::bad_connectivity, section, clers_offset + rc.consumed(), sr.error());

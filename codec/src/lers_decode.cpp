@@ -15,11 +15,13 @@ Status read_irregular_triangles(const uint8_t* data, size_t size, uint64_t offse
   if (size < 4) return make_status(Error::truncated, "5.6", offset + size, "irregular-triangle data shorter than 4 bytes");
   RangeDecoder rc;
   rc.init(data, size);
+  if (rc.bad_start()) return make_status(Error::bad_section, "5.6", offset, "range-coded data starting with FF FF FF FF");
   auto models = std::make_unique<LersModels>();
   int64_t count = 0;
   // §7.2 At most one traversal per triangle.
   if (!decode_signed(rc, models->count, 30, count) || count < 0 || count > int64_t{nt})
-    return make_status(Error::bad_section, "7.2", offset + rc.consumed(), "traversal count out of range");
+    return make_status(rc.failed() ? Error::truncated : Error::bad_section, "7.2", offset + rc.consumed(),
+                       "traversal count out of range");
   std::vector<uint8_t> discovered(nt, 0);
   const std::vector<uint8_t> valence = valence_context ? vertex_valences(mesh) : std::vector<uint8_t>{};
   std::vector<uint32_t> stack;

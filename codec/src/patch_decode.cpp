@@ -20,6 +20,7 @@ Status read_patches(const uint8_t* data, size_t size, uint64_t offset, const Clo
   if (size < 4) return make_status(Error::truncated, "5.6", offset + size, "patch data shorter than 4 bytes");
   RangeDecoder rc;
   rc.init(data, size);
+  if (rc.bad_start()) return make_status(Error::bad_section, "5.6", offset, "range-coded data starting with FF FF FF FF");
   auto fail = [&](Error e, const char* section, const std::string& what) {
     return make_status(rc.failed() ? Error::truncated : e, section, offset + rc.consumed(), what);
   };

@@ -66,6 +66,7 @@ Status read_positions(const uint8_t* data, size_t size, uint64_t offset, const C
   DegreeOrder order(mesh, known);
   RangeDecoder rc;
   rc.init(data, size);
+  if (rc.bad_start()) return make_status(Error::bad_section, "5.6", offset, "range-coded data starting with FF FF FF FF");
   auto models = std::make_unique<ResidualModels>();
   Prediction pr;
   std::vector<uint32_t> mark(mesh.num_vertices, UINT32_MAX);

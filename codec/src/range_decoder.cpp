@@ -10,9 +10,11 @@ void RangeDecoder::init(const uint8_t* data, size_t size) {
   range_ = 0xFFFFFFFFu;
   code_ = 0;
   failed_ = false;
+  bad_start_ = false;
   for (int i = 0; i < 4; ++i) code_ = code_ << 8 | next_byte();
-  // A valid encoder's first four bytes are below 0xFFFFFFFF (§5.6), so Code < Range holds from the start.
-  if (code_ == 0xFFFFFFFFu) failed_ = true;
+  // A valid encoder's first four bytes are below 0xFFFFFFFF (§5.6), so Code < Range holds from the start; a block
+  // that starts with FF FF FF FF is bad_section (it fails like a read past the end, and bad_start() tells which).
+  if (code_ == 0xFFFFFFFFu) failed_ = bad_start_ = true;
 }
 
 }  // namespace prm::codec

@@ -20,7 +20,8 @@ namespace prm::codec {
 
 class RangeDecoder {
  public:
-  // §5.6 Initialisation: Range = 0xFFFFFFFF, Code = the first 4 bytes, big-endian. Code = 0xFFFFFFFF is invalid.
+  // §5.6 Initialisation: Range = 0xFFFFFFFF, Code = the first 4 bytes, big-endian. Code = 0xFFFFFFFF is invalid
+  // (bad_section): the decoder is then failed() from the start and bad_start() is true.
   void init(const uint8_t* data, size_t size);
 
   // §5.3 One bit with model m.
@@ -51,6 +52,8 @@ class RangeDecoder {
   }
 
   bool failed() const { return failed_; }
+  // §5.6 True when the block starts with FF FF FF FF (bad_section, not truncated).
+  bool bad_start() const { return bad_start_; }
   // Bytes consumed so far (including the 4 of the initialisation).
   size_t consumed() const { return pos_; }
   // §5.6 True when nothing failed and every byte was consumed.
@@ -82,6 +85,7 @@ class RangeDecoder {
   uint32_t range_ = 0xFFFFFFFFu;
   uint32_t code_ = 0;
   bool failed_ = false;
+  bool bad_start_ = false;
 };
 
 }  // namespace prm::codec

@@ -127,10 +127,14 @@ TEST(RangeCoder, HostileBlocks) {
     RangeDecoder d;
     d.init(ff.data(), ff.size());
     BitModel m;
+    // §5.6 A block of at least 4 bytes starting FF FF FF FF is bad_section (bad_start), a shorter one truncated.
+    EXPECT_EQ(d.bad_start(), len >= 4);
+    EXPECT_TRUE(d.failed());
     for (int i = 0; i < 1000; ++i) d.decode_bit(m);
     EXPECT_TRUE(d.failed());
     RangeDecoder z;
     z.init(zero.data(), zero.size());
+    EXPECT_FALSE(z.bad_start());
     for (int i = 0; i < 100000 && !z.failed(); ++i) z.decode_bit(m);
     EXPECT_TRUE(z.failed()) << "zeros must run out: every decision consumes range (§4.2)";
   }
