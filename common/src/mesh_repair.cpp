@@ -294,4 +294,21 @@ Mesh repair_mesh(const Mesh& in, RepairReport* report) {
   return m;
 }
 
+std::vector<std::string> repair_summary(const RepairReport& r) {
+  std::vector<std::string> out;
+  auto add = [&](size_t n, const char* what) {
+    if (n) out.push_back(std::to_string(n) + " " + what);
+  };
+  add(r.repeated_index_removed, "face(s) with a repeated vertex removed");
+  add(r.duplicate_removed, "duplicate face(s) removed");
+  add(r.zero_area_flipped, "zero-area face(s) flipped away");
+  add(r.pinched_vertices_split, "pinched vertex copies made");
+  if (r.holes_filled)
+    out.push_back(std::to_string(r.holes_filled) + " hole(s) closed with " + std::to_string(r.fill_triangles) +
+                  " triangles");
+  add(r.unreferenced_removed, "unreferenced vertices removed");
+  out.insert(out.end(), r.notes.begin(), r.notes.end());
+  return out;
+}
+
 }  // namespace prm

@@ -2,10 +2,13 @@
 #include "prm/mesh_validate.h"
 
 #include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <numeric>
 #include <stdexcept>
 #include <string>
 
+#include "prm/error.h"
 #include "prm/vec3.h"
 
 namespace prm {
@@ -280,6 +283,35 @@ MeshReport validate_mesh(const Mesh& m) {
   r.components = comps.size();
   r.per_component = std::move(comps);
   return r;
+}
+
+void check_remesh_range(const Mesh& mesh) {
+  if (mesh.positions.empty()) throw InputError("the mesh has no vertices");
+  auto g = [](double x) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.3g", x);
+    return std::string(buf);
+  };
+  Vec3 lo = mesh.positions[0], hi = mesh.positions[0];
+  double largest = 0;
+  for (size_t v = 0; v < mesh.positions.size(); ++v)
+    for (size_t a = 0; a < 3; ++a) {
+      const double x = mesh.positions[v][a];
+      if (!(std::fabs(x) <= kMaxRemeshCoordinate))  // also NaN
+        throw InputError("vertex " + std::to_string(v) + " has the coordinate " + g(x) +
+                         ": coordinates must be finite and at most " + g(kMaxRemeshCoordinate) +
+                         " in magnitude (lengths are squared and multiplied by areas, which would overflow); scale the "
+                         "mesh down");
+      lo[a] = std::min(lo[a], x);
+      hi[a] = std::max(hi[a], x);
+      largest = std::max(largest, std::fabs(x));
+    }
+  const double extent = std::max({hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]});
+  if (extent == 0) throw InputError("all the vertices coincide (the bounding box is a point): there is no surface");
+  if (extent < kMinRemeshExtent || extent < kMinRemeshExtentRelative * largest)
+    throw InputError("the bounding box is " + g(extent) + " wide at coordinates up to " + g(largest) +
+                     ": too narrow to quantize (at least " + g(kMinRemeshExtent) + " and " +
+                     g(kMinRemeshExtentRelative) + " of the largest coordinate); scale or move the mesh");
 }
 
 }  // namespace prm

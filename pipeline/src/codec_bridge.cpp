@@ -83,4 +83,20 @@ Mesh to_mesh(const codec::DecodedMesh& decoded) {
   return m;
 }
 
+size_t count_zero_area_triangles(const codec::DecodedMesh& decoded) {
+  size_t zero = 0;
+  auto at = [&](uint32_t v, int a) { return static_cast<int64_t>(decoded.quantized[3 * size_t{v} + static_cast<size_t>(a)]); };
+  for (size_t t = 0; t < decoded.num_triangles(); ++t) {
+    const uint32_t* c = &decoded.triangles[3 * t];
+    int64_t d1[3], d2[3];
+    for (int a = 0; a < 3; ++a) {
+      d1[a] = at(c[1], a) - at(c[0], a);
+      d2[a] = at(c[2], a) - at(c[0], a);
+    }
+    // Quantized coordinates have at most 20 bits (spec §3.3): the products fit in 64 bits.
+    zero += d1[1] * d2[2] == d1[2] * d2[1] && d1[2] * d2[0] == d1[0] * d2[2] && d1[0] * d2[1] == d1[1] * d2[0];
+  }
+  return zero;
+}
+
 }  // namespace prm::pipeline

@@ -47,14 +47,16 @@ PackResult pack_at(const Mesh& source, const MetroReference& reference, const Pa
   po.seam_context = options.max_minor >= codec::kFormatMinorSeam ? -1 : 0;
   po.patch_contexts = options.max_minor >= codec::kFormatMinorPatchContexts;
   // The stream of a candidate with options o, and the error of its decoded mesh.
+  // zero_area: the decoded mesh's triangles of zero area (the chosen heights can put a corner on a line).
   auto encode_and_measure = [&](const remesh::PrmMesh& prm, const codec::PrmOptions& o, codec::EncodeReport* report,
-                                std::vector<uint8_t>* stream) {
+                                std::vector<uint8_t>* stream, size_t* zero_area = nullptr) {
     auto encoded = encode_prm_mesh(prm, report, o);
     if (!encoded.ok())
       throw InputError("the piecewise regular mesh could not be encoded (a remesher or codec bug): " +
                        encoded.status.message + " (spec §" + encoded.status.spec_section + ")");
     auto decoded = codec::decode(encoded.value.data(), encoded.value.size());
     if (!decoded.ok()) throw InputError("the encoder's stream does not decode (a codec bug): " + decoded.status.message);
+    if (zero_area) *zero_area = count_zero_area_triangles(decoded.value);
     const DistanceReport d = reference.compare(to_mesh(decoded.value));
     if (stream) *stream = std::move(encoded.value);
     return remesh::ErrorEstimate{d.rel(d.rms), d.rel(d.max)};
@@ -103,8 +105,9 @@ PackResult pack_at(const Mesh& source, const MetroReference& reference, const Pa
       }
       codec::EncodeReport report;
       std::vector<uint8_t> stream;
-      const remesh::ErrorEstimate e = encode_and_measure(out.remesh.prm, o, &report, &stream);
-      if (e.rms > ro.target_error) {
+      size_t zero_area = 0;
+      const remesh::ErrorEstimate e = encode_and_measure(out.remesh.prm, o, &report, &stream, &zero_area);
+      if (e.rms > ro.target_error || zero_area > 0) {
         hi = mid;
         continue;
       }
@@ -118,6 +121,29 @@ PackResult pack_at(const Mesh& source, const MetroReference& reference, const Pa
     }
     out.seconds_remesh += seconds_since(t1);  // part of the search
   }
+  // The stream must hold the mesh that was remeshed: no triangle may lose its area (the remesher separates what
+  // rounding would collapse; heights chosen by rate and distortion, given here, may still put a corner on a line).
+  auto zero_area_of = [](const std::vector<uint8_t>& stream) {
+    const auto decoded = codec::decode(stream.data(), stream.size());
+    if (!decoded.ok()) throw InputError("the encoder's stream does not decode (a codec bug): " + decoded.status.message);
+    return count_zero_area_triangles(decoded.value);
+  };
+  size_t zero_area = zero_area_of(out.stream);
+  if (zero_area > 0 && out.codec_options.height_lambda > 0) {
+    codec::PrmOptions rounded = out.codec_options;
+    rounded.height_lambda = 0;
+    auto encoded = encode_prm_mesh(out.remesh.prm, &out.report, rounded);
+    if (!encoded.ok())
+      throw InputError("the piecewise regular mesh could not be encoded (a remesher or codec bug): " +
+                       encoded.status.message + " (spec §" + encoded.status.spec_section + ")");
+    out.stream = std::move(encoded.value);
+    out.codec_options = rounded;
+    zero_area = zero_area_of(out.stream);
+  }
+  if (zero_area > 0)
+    throw remesh::TargetNotReached(std::to_string(zero_area) + " triangle(s) of the piecewise regular mesh have zero "
+                                   "area once quantized to " + std::to_string(bits) + " bits (step scale " +
+                                   std::to_string(step_scale) + "): vertices too close to separate");
   if (out.codec_options.height_lambda > 0) {
     // The PRM of the result is the one the stream holds: its heights are the encoder's choice.
     const auto decoded = codec::decode(out.stream.data(), out.stream.size());
@@ -136,11 +162,12 @@ PackResult pack_at(const Mesh& source, const MetroReference& reference, const Pa
 
 PackResult pack(const Mesh& input, const PackOptions& options) {
   auto t0 = std::chrono::steady_clock::now();
-  // Paper §2: the remesher needs a closed manifold; the bunny's holes are closed by fans first.
+  check_remesh_range(input);  // before anything squares a length
+  // Paper §2: the remesher needs a closed, consistently oriented manifold; the bunny's holes are closed by fans first.
   const MeshReport check = validate_mesh(input);
   Mesh closed;
   RepairReport repair;
-  const bool repaired = !check.closed() || !check.clean() || !check.manifold();
+  const bool repaired = !check.ready_for_remesh();
   if (repaired) closed = repair_mesh(input, &repair);  // throws InputError when it cannot be made a closed manifold
   const Mesh& source = repaired ? closed : input;
   const double seconds_repair = seconds_since(t0);
@@ -164,6 +191,9 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
       PackResult r;
       try {
         r = pack_at(source, reference, options, bits, scale, grid);
+      } catch (const remesh::VertexBudgetExceeded&) {
+        if (!have) throw;  // more bits would not make the grid it needs coarser
+        return Outcome::unreachable;
       } catch (const remesh::TargetNotReached&) {
         return Outcome::unreachable;
       }

@@ -1,5 +1,6 @@
 // Every mesh the remesher makes from ../shared/meshes and CGAL's dense meshes, at two grid sizes, through the PRM
-// codec: decode(encode(m)) is exactly the quantized PRM (issue 6). Heavy: about two minutes in Release.
+// codec: decode(encode(m)) is exactly the quantized PRM (issue 6), and no decoded triangle has zero area (issue 17).
+// Heavy: about two minutes in Release.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -8,6 +9,7 @@
 #include <string>
 
 #include "prm/mesh_io.h"
+#include "prm/pipeline/codec_bridge.h"
 #include "prm/pipeline/pack.h"
 
 namespace {
@@ -32,6 +34,7 @@ TEST(PackAllMeshes, ExactRoundTripAtTwoGridSizes) {
       EXPECT_GT(r.report.regular_triangles, 0u);
       const auto decoded = prm::codec::decode(r.stream.data(), r.stream.size());
       ASSERT_TRUE(decoded.ok()) << decoded.status.message;
+      EXPECT_EQ(prm::pipeline::count_zero_area_triangles(decoded.value), 0u);
       const prm::remesh::PrmMesh& prm = r.remesh.prm;
       ASSERT_EQ(decoded.value.num_vertices(), prm.mesh.positions.size());
       ASSERT_EQ(decoded.value.num_triangles(), prm.mesh.triangles.size());
@@ -44,8 +47,10 @@ TEST(PackAllMeshes, ExactRoundTripAtTwoGridSizes) {
         for (uint32_t c = 0; c < 3; ++c)
           ASSERT_EQ(r.report.vertex_order[decoded.value.triangles[3 * t + c]], prm.mesh.triangles[in][(rot + c) % 3]);
       }
-      std::printf("%s g/diag %.3f: n_r %zu, %u/%zu regular, %zu bytes (%.2f bpv)\n",
+      std::printf("%s g/diag %.3f: n_r %zu (quantization collapsed %zu triangles and %zu vertices, %zu moved), "
+                  "%u/%zu regular, %zu bytes (%.2f bpv)\n",
                   std::filesystem::path(path).filename().c_str(), fraction, prm.mesh.positions.size(),
+                  prm.stats.quantized_degenerate, prm.stats.quantized_coincident, prm.stats.quantized_moves,
                   r.report.regular_triangles, prm.mesh.triangles.size(), r.stream.size(),
                   8.0 * static_cast<double>(r.stream.size()) / static_cast<double>(prm.mesh.positions.size()));
     }

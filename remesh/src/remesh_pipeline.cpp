@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "prm/error.h"
+#include "prm/mesh_validate.h"
 #include "prm/progress.h"
 #include "prm/remesh/remesh.h"
 #include "prm/vec3.h"
@@ -27,6 +28,12 @@ double bbox_diagonal(const Mesh& m) {
   return norm(hi - lo);
 }
 
+double surface_area(const Mesh& m) {
+  double sum = 0;
+  for (const Tri& t : m.triangles) sum += triangle_area(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]);
+  return sum;
+}
+
 double mean_edge_length(const Mesh& m) {
   double sum = 0;
   size_t n = 0;
@@ -46,6 +53,7 @@ RemeshResult remesh(const Mesh& input, const RemeshOptions& options, const Error
   if (given != 1) throw std::invalid_argument("remesh: give exactly one of grid_size, grid_fraction, target_error");
   if (options.target_error > 0 && !error) throw std::invalid_argument("remesh: target_error needs an error function");
   if (input.triangles.empty()) throw InputError("the mesh has no faces");
+  check_remesh_range(input);
 
   RemeshResult result;
   const ReliefLayout layout = build_reliefs(input, options.reliefs);
@@ -68,8 +76,35 @@ RemeshResult remesh(const Mesh& input, const RemeshOptions& options, const Error
   ro.fit_heights = options.fit_heights;
   ro.error_flip_weight = options.error_flip_weight;
   const double diagonal = bbox_diagonal(input);
+  const int64_t coarsest = int64_t{1} << options.bits;  // a grid wider than the bounding box
   auto grid_of = [&](double size) {
-    return std::max<int64_t>(2, static_cast<int64_t>(std::llround(size / ro.frame.step)));
+    const double steps = size / ro.frame.step;
+    if (!(steps < static_cast<double>(coarsest))) return coarsest;
+    return std::max<int64_t>(2, static_cast<int64_t>(std::llround(steps)));
+  };
+  // The vertices of a grid, estimated as the input's area over the lattice's cell (the reliefs' projections are
+  // smaller, the seams add a few), and the coarsest grid that gives at most n.
+  const double area = surface_area(input);
+  auto estimated_vertices = [&](int64_t grid) {
+    const HexLattice l = HexLattice::with_grid(grid);
+    return area / (static_cast<double>(l.A) * static_cast<double>(l.C) * ro.frame.step * ro.frame.step);
+  };
+  auto grid_for_vertices = [&](double n) {
+    const double guess = std::sqrt(area / (0.8660254037844386 * n)) / ro.frame.step;
+    int64_t g = guess < static_cast<double>(coarsest) ? std::max<int64_t>(2, std::llround(guess)) : coarsest;
+    while (g < coarsest && estimated_vertices(g) > n) ++g;
+    while (g > 2 && estimated_vertices(g - 1) <= n) --g;
+    return g;
+  };
+  const size_t budget = options.max_vertices ? options.max_vertices
+                                             : std::max(kMinVertexBudget, kVertexBudgetPerInputVertex * input.positions.size());
+  const int64_t finest = grid_for_vertices(static_cast<double>(budget));
+  auto over_budget = [&](int64_t grid) {
+    return "a grid of " + std::to_string(static_cast<double>(grid) * ro.frame.step) + " (" + std::to_string(grid) +
+           " quantization steps at " + std::to_string(options.bits) + " bits) gives about " +
+           std::to_string(std::llround(estimated_vertices(grid))) + " vertices, more than the remesher's limit of " +
+           std::to_string(budget) + " (the larger of " + std::to_string(kMinVertexBudget) + " and " +
+           std::to_string(kVertexBudgetPerInputVertex) + " per input vertex)";
   };
 
   auto attempt = [&](int64_t grid) {
@@ -89,6 +124,7 @@ RemeshResult remesh(const Mesh& input, const RemeshOptions& options, const Error
 
   if (options.target_error <= 0) {
     const double size = options.grid_size > 0 ? options.grid_size : options.grid_fraction * diagonal;
+    if (grid_of(size) < finest) throw VertexBudgetExceeded(over_budget(grid_of(size)) + ": choose a coarser grid");
     result.prm = attempt(grid_of(size));
     if (error) {
       result.error = result.search.back().error;
@@ -101,7 +137,8 @@ RemeshResult remesh(const Mesh& input, const RemeshOptions& options, const Error
   // Search: the resampling error grows roughly like g^2 (linear interpolation of a smooth surface), so each step
   // rescales g by (E / e)^(1/p), with the exponent p fitted from the last two steps (clamped to [1, 3]).
   const double target = options.target_error;
-  int64_t grid = grid_of(options.initial_grid_size > 0 ? options.initial_grid_size : 1.5 * mean_edge_length(input));
+  int64_t grid = std::max(finest,
+                           grid_of(options.initial_grid_size > 0 ? options.initial_grid_size : 1.5 * mean_edge_length(input)));
   int64_t best_grid = -1;
   PrmMesh best;
   double best_error = 0;
@@ -130,14 +167,25 @@ RemeshResult remesh(const Mesh& input, const RemeshOptions& options, const Error
     // Aim slightly below the target so that the next step is likely to be feasible.
     double next = static_cast<double>(grid) * std::pow(0.97 * target / std::max(e, 1e-12), 1.0 / p);
     int64_t g = std::max<int64_t>(2, static_cast<int64_t>(std::floor(next)));
+    const double growth = std::max(static_cast<double>(kSearchVertexFloor),
+                                   static_cast<double>(kSearchVertexGrowth) * static_cast<double>(step.vertices));
+    g = std::min(std::max({g, finest, grid_for_vertices(growth)}), coarsest);
     if (best_grid > 0) g = std::max(g, best_grid + 1);
     if (smallest_failing != INT64_MAX) g = std::min(g, smallest_failing - 1);
     if (best_grid > 0 && smallest_failing != INT64_MAX && (g <= best_grid || g >= smallest_failing))
       g = (best_grid + smallest_failing) / 2;
-    if (g == grid || g < 2) break;
+    if (g == grid || g < finest || g > coarsest) break;
     grid = g;
   }
   progress.finish();
+  if (best_grid < 0 && finest > 2 && smallest_failing <= finest) {
+    double finest_error = 0;
+    for (const SearchStep& st : result.search)
+      if (st.grid == finest) finest_error = st.error.rms;
+    throw VertexBudgetExceeded("remesh: the target error " + std::to_string(target) + " needs a finer grid: " +
+                               over_budget(finest - 1) + "; the finest within it gives an RMS error of " +
+                               std::to_string(finest_error));
+  }
   if (best_grid < 0)
     throw TargetNotReached("remesh: no grid size reached the target error " + std::to_string(target) +
                              " in " + std::to_string(options.max_search_steps) + " steps");

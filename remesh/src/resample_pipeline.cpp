@@ -17,6 +17,7 @@
 #include "prm/progress.h"
 #include "prm/remesh/resample.h"
 #include "prm/vec3.h"
+#include "quantized_separation.h"
 #include "relief_mesh.h"
 #include "relief_resampling.h"
 #include "relief_slicing.h"
@@ -176,6 +177,13 @@ PrmMesh resample_and_merge(const LayoutInput& layout, const ResampleOptions& opt
     st.heights_moved = hs.moved;
     st.height_moves_reverted = hs.reverted;
   }
+  // Last, since it places vertices exactly on quantization points: the stream must hold this mesh, not one with
+  // collapsed triangles.
+  const QuantizedSeparationStats qs = separate_quantized_vertices(prm);
+  st.quantized_degenerate = qs.degenerate_faces;
+  st.quantized_coincident = qs.coincident_vertices;
+  st.quantized_moves = qs.moved;
+  st.quantized_unresolved = qs.unresolved;
   store_prm_labels(prm);
   return prm;
 }

@@ -71,7 +71,8 @@ void add_pack_command(CLI::App& root) {
   cmd->callback([opt] {
     if (opt->grid <= 0 && opt->grid_fraction <= 0 && opt->target <= 0)
       throw CLI::ValidationError("pack", "give one of --target-error, --grid or --grid-fraction");
-    const Mesh input = read_mesh(opt->input);
+    ReadReport read;
+    const Mesh input = read_mesh(opt->input, {}, &read);
     pipeline::PackOptions po;
     po.target_error = opt->target;
     po.grid_size = opt->grid;
@@ -90,8 +91,19 @@ void add_pack_command(CLI::App& root) {
     try {
       r = pipeline::pack(input, po);
     } catch (const remesh::TargetNotReached& e) {
-      throw Failure(e.what());
+      throw Failure(opt->input + ": " + e.what());
+    } catch (const InputError& e) {
+      throw InputError(opt->input + ": " + e.what());
     }
+    // Nothing is dropped or moved silently: what reading, repair and quantization changed.
+    std::vector<std::string> changes;
+    if (read.unreferenced_dropped) changes.push_back(std::to_string(read.unreferenced_dropped) + " unreferenced vertices dropped on reading");
+    if (read.degenerate_dropped) changes.push_back(std::to_string(read.degenerate_dropped) + " face(s) with a repeated index dropped on reading");
+    if (read.vertices_welded) changes.push_back(std::to_string(read.vertices_welded) + " coincident vertices welded on reading");
+    for (const std::string& c : repair_summary(r.repair)) changes.push_back(c);
+    if (const size_t moved = r.remesh.prm.stats.quantized_moves)
+      changes.push_back(std::to_string(moved) + " remeshed vertices moved by up to two quantization steps so that no "
+                        "triangle loses its area");
     write_file_bytes(opt->output, r.stream);
     if (!opt->keep_prm.empty())
       write_mesh(r.remesh.prm.mesh, opt->keep_prm, WriteOptions{MeshFormat::Ply, true, true, true});
@@ -112,6 +124,7 @@ void add_pack_command(CLI::App& root) {
           {"n_r", rep.vertices},
           {"triangles", rep.triangles},
           {"holes_closed", r.repair.holes_filled},
+          {"changes", changes},
           {"grid_size", g},
           {"grid_steps", r.remesh.prm.lattice.A},
           {"tau", opt->tau},
@@ -137,7 +150,7 @@ void add_pack_command(CLI::App& root) {
     } else {
       std::printf("%s -> %s: %zu bytes, %.3f bits per vertex\n", opt->input.c_str(), opt->output.c_str(),
                   rep.total_bytes, 8.0 * rep.total_bytes / n_r);
-      if (r.repaired) std::printf("  repaired first: %zu hole(s) closed\n", r.repair.holes_filled);
+      for (const std::string& c : changes) std::printf("  changed: %s\n", c.c_str());
       std::printf("  remeshed: %zu -> %u vertices, grid %.6g (%lld steps), %.1f%% regular triangles in %u patches\n",
                   input.num_vertices(), rep.vertices, g, static_cast<long long>(r.remesh.prm.lattice.A),
                   s.faces ? 100.0 * static_cast<double>(s.regular_faces) / s.faces : 0.0, rep.regular_patches);

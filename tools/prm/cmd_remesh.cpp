@@ -48,8 +48,9 @@ void add_remesh_command(CLI::App& root) {
     const auto t0 = std::chrono::steady_clock::now();
     Mesh input = read_mesh(opt->input);
     RepairReport rep;
+    check_remesh_range(input);
     const MeshReport check = validate_mesh(input);
-    if (!check.closed() || !check.clean() || !check.manifold()) input = repair_mesh(input, &rep);
+    if (!check.ready_for_remesh()) input = repair_mesh(input, &rep);
     remesh::RemeshOptions ro;
     ro.bits = opt->bits;
     ro.reliefs.tau = opt->tau;
@@ -96,7 +97,8 @@ void add_remesh_command(CLI::App& root) {
           {"stats", {{"sliced_vertices", s.sliced_vertices}, {"collapses", s.collapses}, {"cell_flips", s.cell_flips},
                      {"stuck", s.stuck}, {"fill_triangles", s.fill_triangles}, {"loops_broken", s.loops_broken},
                      {"seam_collapses", s.seam_collapses}, {"area_flips", s.area_flips}, {"valence_flips", s.valence_flips},
-                     {"error_flips", s.error_flips}, {"repairs", s.repairs}}},
+                     {"error_flips", s.error_flips}, {"repairs", s.repairs},
+                     {"quantized_moves", s.quantized_moves}, {"quantized_unresolved", s.quantized_unresolved}}},
           {"search", search}, {"seconds", secs}};
       std::printf("%s\n", j.dump().c_str());
       return;
@@ -116,6 +118,12 @@ void add_remesh_command(CLI::App& root) {
       std::printf("\n");
     }
     if (s.unrepaired) std::printf("  warning: %zu flipped or zero-area triangles could not be removed\n", s.unrepaired);
+    if (s.quantized_moves)
+      std::printf("  %zu vertices moved by up to two quantization steps, so that no triangle loses its area at %d bits\n",
+                  s.quantized_moves, res.prm.frame.bits);
+    if (s.quantized_unresolved)
+      std::printf("  warning: %zu triangles or vertices still collapse when quantized to %d bits\n",
+                  s.quantized_unresolved, res.prm.frame.bits);
     std::printf("  %.1f s\n", secs);
   });
 }

@@ -45,11 +45,24 @@ struct MeshReport {
   bool manifold() const { return non_manifold_edges == 0 && non_manifold_vertices == 0; }
   bool closed() const { return boundary_edges == 0; }
   bool clean() const { return repeated_index_faces == 0 && zero_area_faces == 0 && duplicate_faces == 0; }
+  // What the remesher takes as it is; anything else goes through repair_mesh() first (which refuses what it
+  // cannot fix without guessing, such as faces that are not consistently oriented).
+  bool ready_for_remesh() const { return closed() && clean() && manifold() && oriented(); }
   int genus_sum() const;  // sum over components (-1 when a component has no genus)
 };
 
 // Linear-logarithmic (sort-based edge table, union-find). Throws std::invalid_argument if a triangle uses a
 // vertex index out of range (read_mesh() never returns such a mesh).
 MeshReport validate_mesh(const Mesh& mesh);
+
+// The remesher and the error measure take up to fourth powers of lengths (squared distances weighted by areas), and
+// quantize the bounding box into up to 2^20 steps: the coordinates must stay well inside a double's range and the
+// box must be wide enough that a step is many units in the last place of its coordinates.
+constexpr double kMaxRemeshCoordinate = 1e64;    // largest |coordinate|
+constexpr double kMinRemeshExtent = 1e-64;       // smallest largest extent of the bounding box
+constexpr double kMinRemeshExtentRelative = 1e-9;  // ... and relative to the largest |coordinate|
+// Throws prm::InputError naming the problem when the used vertices' coordinates are outside those ranges: all
+// vertices coincide (or nearly, for the precision of their coordinates), or a coordinate is too large (or not finite).
+void check_remesh_range(const Mesh& mesh);
 
 }  // namespace prm

@@ -27,4 +27,8 @@ codec::Result<std::vector<uint8_t>> encode_any_mesh(const Mesh& mesh, int bits, 
 // A decoded stream as a prm::Mesh (dequantized double positions).
 Mesh to_mesh(const codec::DecodedMesh& decoded);
 
+// Triangles of a decoded stream whose quantized corners are collinear or coincide (exactly zero area; the
+// integer test, so no rounding decides it).
+size_t count_zero_area_triangles(const codec::DecodedMesh& decoded);
+
 }  // namespace prm::pipeline

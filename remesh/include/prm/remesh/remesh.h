@@ -22,6 +22,10 @@ struct RemeshOptions {
   double target_error = 0;       // largest symmetric RMS distance, as a fraction of the diagonal: search g
   double initial_grid_size = 0;  // with target_error: where the search starts (model units; 0: 1.5 mean edges)
   int max_search_steps = 8;
+  // The most vertices a grid may give (estimated from the input's area and the lattice's cell): 0 for
+  // max(kMinVertexBudget, kVertexBudgetPerInputVertex x the input's vertices). A fixed grid finer than that is
+  // refused, and the search does not go finer (VertexBudgetExceeded when the target needs it).
+  size_t max_vertices = 0;
   double max_normal_angle_deg = 90;
   bool parallel = true;
   bool fit_heights = true;       // least-squares heights of the lattice vertices (ResampleOptions::fit_heights)
@@ -55,13 +59,29 @@ struct RemeshResult {
   double seconds_reliefs = 0, seconds_total = 0;
 };
 
+constexpr size_t kMinVertexBudget = size_t{1} << 18;
+constexpr size_t kVertexBudgetPerInputVertex = 4;
+// One search step makes at most this many times the vertices of the step before (or kSearchVertexFloor): an
+// extrapolation from coarse steps, where the error follows no power of the grid size, does not jump to a grid that
+// costs seconds and gigabytes (CGAL's 19-vertex 3torus went from 396 vertices to 469k in one step).
+constexpr size_t kSearchVertexGrowth = 16;
+constexpr size_t kSearchVertexFloor = 4096;
+
 // No grid size within the search's steps met the target error.
 class TargetNotReached : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
 
-// input: a closed 2-manifold (close holes first: prm::repair). `error` may be empty unless target_error is set.
+// The grid asked for, or the one the target error needs, gives more vertices than RemeshOptions::max_vertices. A
+// TargetNotReached too, but a finer quantization does not help.
+class VertexBudgetExceeded : public TargetNotReached {
+ public:
+  using TargetNotReached::TargetNotReached;
+};
+
+// input: a closed 2-manifold (close holes first: prm::repair) whose coordinates pass check_remesh_range()
+// (prm::InputError otherwise). `error` may be empty unless target_error is set.
 RemeshResult remesh(const Mesh& input, const RemeshOptions& options, const ErrorFunction& error = {});
 
 }  // namespace prm::remesh

@@ -1,0 +1,28 @@
+// What the decoder outputs is the PRM quantized to its frame. Vertices that the remesher placed less than a
+// quantization step apart (sliced vertices next to lattice points, seam vertices) can round to one point, and a
+// triangle whose corners round onto one line loses its area: the stream would not hold the mesh that was remeshed.
+// This pass moves such vertices to a nearby free quantization point, so that no triangle has zero area and no two
+// vertices share a position after quantization.
+#pragma once
+
+#include <cstddef>
+
+#include "prm/remesh/resample.h"
+
+namespace prm::remesh {
+
+struct QuantizedSeparationStats {
+  size_t degenerate_faces = 0;     // faces of zero area after quantization, before the pass
+  size_t coincident_vertices = 0;  // vertices that shared their quantized position with another, before the pass
+  size_t moved = 0;                // vertices moved (to a quantization point; lattice vertices along their height)
+  size_t unresolved = 0;           // faces still of zero area, or vertices still sharing a position, after it
+};
+
+// prm: a merged PRM with its labels and frame. A vertex that is not on a lattice moves to one of the quantization
+// points within two steps of where it was (nearest first); a lattice vertex moves along its relief's height axis
+// by one or two steps (its lattice position, what makes a triangle regular, is kept). A move is taken only if every
+// triangle around the vertex keeps a non-zero area and its orientation; moved vertices sit exactly on their
+// quantization point, so that the search and the encoder see the same mesh.
+QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm);
+
+}  // namespace prm::remesh
