@@ -6,6 +6,7 @@
 
 #include "codec_cli_util.h"
 #include "commands.h"
+#include "gltf_commands.h"
 #include "remesher_options.h"
 #include "prm/error.h"
 #include "prm/mesh_io.h"
@@ -22,14 +23,14 @@ void add_pack_command(CLI::App& root) {
     int bits = 0, sweeps = 4;
     std::string max_version = "1.4";
     size_t samples = 0;
-    bool json = false, no_fit = false, round_heights = false;
+    bool json = false, no_fit = false, round_heights = false, fallback = false;
     double error_flip_weight = remesh::kDefaultErrorFlipWeight;
   };
   auto opt = std::make_shared<Options>();
   cmd->add_option("input", opt->input, "Mesh file (OBJ/PLY/OFF/STL/glTF); holes are closed first")
       ->required()
       ->check(CLI::ExistingFile);
-  cmd->add_option("-o,--output", opt->output, "Output .prm stream")->required();
+  cmd->add_option("-o,--output", opt->output, "Output .prm stream, or .glb/.gltf: a glTF asset with PRM_mesh_compression (a glTF input keeps its whole scene, each triangle primitive remeshed in its own frame)")->required();
   auto* te = cmd->add_option("--target-error", opt->target,
                              "Largest RMS distance to the input, as a fraction of the bounding-box diagonal "
                              "(e.g. 2e-4): the grid size is searched")
@@ -67,11 +68,14 @@ void add_pack_command(CLI::App& root) {
                   "Newest format the stream may need, for older decoders: 1.4 (default), 1.3 (no patch contexts, spec "
                   "§8.4.1), 1.2 (no CLERS seam context either, §6.5.2)")
       ->check(CLI::IsMember({"1.2", "1.3", "1.4"}));
+  cmd->add_flag("--fallback", opt->fallback,
+                "With a .glb/.gltf output: also store the decoded geometry uncompressed, so that loaders without "
+                "PRM_mesh_compression show it (the extension is then not required)");
   cmd->add_flag("--json", opt->json, "Print the report as one JSON object");
   cmd->callback([opt] {
     if (opt->grid <= 0 && opt->grid_fraction <= 0 && opt->target <= 0)
       throw CLI::ValidationError("pack", "give one of --target-error, --grid or --grid-fraction");
-    const Mesh input = read_mesh(opt->input);
+    check_pack_output(opt->output, opt->fallback);
     pipeline::PackOptions po;
     po.target_error = opt->target;
     po.grid_size = opt->grid;
@@ -86,6 +90,8 @@ void add_pack_command(CLI::App& root) {
     po.optimize_heights = !opt->round_heights;
     po.height_sweeps = opt->sweeps;
     po.max_minor = opt->max_version[2] - '0';
+    if (is_gltf_file_path(opt->output)) return run_gltf_pack(opt->input, opt->output, po, opt->fallback, opt->json);
+    const Mesh input = read_mesh(opt->input);
     pipeline::PackResult r;
     try {
       r = pipeline::pack(input, po);
