@@ -130,7 +130,7 @@ AccessorData read_accessor(const Document& doc, int64_t index, const std::string
   if (!csize) fail(doc, aw + ".componentType " + std::to_string(ctype) + " is not a glTF component type");
   const int ncomp = component_count(a.value("type", std::string()));
   if (!ncomp) fail(doc, aw + ".type is missing or unknown");
-  if (!a.contains("count") || !a["count"].is_number_unsigned() || a["count"].get<uint64_t>() == 0)
+  if (!a.contains("count") || !a["count"].is_number_integer() || a["count"].get<int64_t>() <= 0)
     fail(doc, aw + ".count must be a positive integer");
   const bool normalized = a.value("normalized", false);
   AccessorData out;

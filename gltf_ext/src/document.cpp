@@ -393,8 +393,8 @@ void compact(Document& doc) {
   doc.buffers.assign(1, std::move(merged));
 }
 
-void write_document(Document& doc, const std::string& path) {
-  compact(doc);
+void write_document(Document& doc, const std::string& path, bool repack) {
+  if (repack) compact(doc);
   const size_t dot = path.find_last_of('.');
   std::string ext = dot == std::string::npos ? "" : path.substr(dot + 1);
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
@@ -419,7 +419,9 @@ void write_document(Document& doc, const std::string& path) {
     }
   } else {
     if (doc.json.contains("buffers"))
-      doc.json["buffers"][0]["uri"] = "data:application/octet-stream;base64," + base64_encode(doc.buffers[0]);
+      for (size_t i = 0; i < doc.buffers.size(); ++i)
+        if (!doc.buffers[i].empty())
+          doc.json["buffers"][i]["uri"] = "data:application/octet-stream;base64," + base64_encode(doc.buffers[i]);
     const std::string text = doc.json.dump(1);
     out.assign(text.begin(), text.end());
     out.push_back('\n');

@@ -25,11 +25,12 @@ std::map<std::pair<size_t, size_t>, std::pair<size_t, std::string>> input_bytes(
   const json& accessors = doc.json.contains("accessors") ? doc.json["accessors"] : json::array();
   const json& views = doc.json.contains("bufferViews") ? doc.json["bufferViews"] : json::array();
   auto bytes_of = [&](const json& index, std::string& codec) -> double {
-    if (!index.is_number_unsigned() || index.get<size_t>() >= accessors.size()) return 0;
+    if (!index.is_number_integer() || index.get<int64_t>() < 0 || index.get<size_t>() >= accessors.size()) return 0;
     const json& a = accessors[index.get<size_t>()];
     const double raw = a.value("count", 0.0) * component_size(a.value("componentType", 0)) *
                        component_count(a.value("type", std::string()));
-    if (!a.contains("bufferView") || !a["bufferView"].is_number_unsigned() || a["bufferView"].get<size_t>() >= views.size())
+    if (!a.contains("bufferView") || !a["bufferView"].is_number_integer() || a["bufferView"].get<int64_t>() < 0 ||
+        a["bufferView"].get<size_t>() >= views.size())
       return raw;
     const json& v = views[a["bufferView"].get<size_t>()];
     if (v.contains("extensions") && v["extensions"].contains("EXT_meshopt_compression") && v.value("byteLength", 0.0) > 0) {
@@ -120,7 +121,7 @@ ScenePackReport pack_scene(Document& doc, const ScenePackOptions& options) {
   std::set<size_t> skinned;
   if (doc.json.contains("nodes"))
     for (const json& n : doc.json["nodes"])
-      if (n.contains("skin") && n.contains("mesh") && n["mesh"].is_number_unsigned()) skinned.insert(n["mesh"].get<size_t>());
+      if (n.contains("skin") && n.contains("mesh") && n["mesh"].is_number_integer() && n["mesh"].get<int64_t>() >= 0) skinned.insert(n["mesh"].get<size_t>());
   if (!doc.json.contains("meshes")) return report;
   for (size_t m = 0; m < doc.json["meshes"].size(); ++m) {
     if (!doc.json["meshes"][m].contains("primitives")) continue;

@@ -33,8 +33,9 @@ bool is_gltf_path(const std::string& path);
 
 // Writes the asset: .glb (one BIN chunk) or .gltf (the buffer as a data: URI), chosen by the extension. Unused
 // accessors and bufferViews are dropped first and every bufferView is moved into one buffer, 4-byte aligned
-// (compact()). Throws prm::IoError when the file cannot be written.
-void write_document(Document& doc, const std::string& path);
+// (compact()); `repack` false writes the buffers as they are (tests that build their own layouts). Throws
+// prm::IoError when the file cannot be written.
+void write_document(Document& doc, const std::string& path, bool repack = true);
 
 // Drops accessors no primitive, skin, animation or EXT_mesh_gpu_instancing node uses, then bufferViews no accessor,
 // image or compression extension uses, renumbering the references; then copies every bufferView into one buffer.
