@@ -7,6 +7,7 @@
 #include "codec_cli_util.h"
 #include "commands.h"
 #include "gltf_commands.h"
+#include "prm_stream_info.h"
 #include "remesher_options.h"
 #include "prm/error.h"
 #include "prm/mesh_io.h"
@@ -73,6 +74,8 @@ void add_pack_command(CLI::App& root) {
                 "PRM_mesh_compression show it (the extension is then not required)");
   cmd->add_flag("--json", opt->json, "Print the report as one JSON object");
   cmd->callback([opt] {
+    if (is_prm_stream_path(opt->input) && is_gltf_file_path(opt->output))
+      return wrap_prm_stream(opt->input, opt->output, opt->fallback, opt->json);
     if (opt->grid <= 0 && opt->grid_fraction <= 0 && opt->target <= 0)
       throw CLI::ValidationError("pack", "give one of --target-error, --grid or --grid-fraction");
     check_pack_output(opt->output, opt->fallback);
@@ -91,6 +94,7 @@ void add_pack_command(CLI::App& root) {
     po.height_sweeps = opt->sweeps;
     po.max_minor = opt->max_version[2] - '0';
     if (is_gltf_file_path(opt->output)) return run_gltf_pack(opt->input, opt->output, po, opt->fallback, opt->json);
+    note_gltf_to_prm(opt->input);
     const Mesh input = read_mesh(opt->input);
     pipeline::PackResult r;
     try {

@@ -14,6 +14,7 @@
 #include "prm/gltf/pack_scene.h"
 #include "prm/gltf/prm_extension.h"
 #include "prm/mesh_io.h"
+#include "codec_cli_util.h"
 #include "prm_stream_info.h"
 
 namespace prm::cli {
@@ -138,6 +139,42 @@ void run_gltf_pack(const std::string& input, const std::string& output, const pi
     }
   }
   std::printf("  total: primitives' geometry %zu -> %zu bytes\n", bytes_in, bytes_out);
+}
+
+void wrap_prm_stream(const std::string& input, const std::string& output, bool fallback, bool as_json) {
+  const std::vector<uint8_t> stream = read_file_bytes(input);
+  codec::DecodeOptions dopt;
+  dopt.positions = codec::PositionOutput::float64;
+  const auto decoded = codec::decode(stream.data(), stream.size(), dopt);
+  if (!decoded.ok()) throw InputError("'" + input + "' is not a valid PRM stream: " + describe(decoded.status));
+  gltf::Document doc;
+  doc.path = output;
+  doc.json = {{"asset", {{"version", "2.0"}, {"generator", "prm"}}},
+              {"scene", 0},
+              {"scenes", json::array({{{"nodes", {0}}}})},
+              {"nodes", json::array({{{"mesh", 0}}})},
+              {"meshes", json::array({{{"primitives", json::array({{{"attributes", json::object()}}})}}})}};
+  const size_t bytes_out = gltf::attach_prm_stream(doc, 0, 0, stream, decoded.value, fallback);
+  gltf::write_document(doc, output);
+  if (as_json) {
+    const json j = {{"input", input}, {"output", output}, {"extension", gltf::kExtensionName}, {"fallback", fallback},
+                    {"vertices", decoded.value.num_vertices()}, {"triangles", decoded.value.num_triangles()},
+                    {"stream_bytes", stream.size()}, {"bytes_out", bytes_out}, {"file_bytes_out", file_size(output)}};
+    std::printf("%s\n", j.dump().c_str());
+  } else {
+    std::printf("%s -> %s: the stream (%zu bytes, %zu vertices, %zu triangles) as it is in one %s primitive%s, file "
+                "%zu bytes\n",
+                input.c_str(), output.c_str(), stream.size(), decoded.value.num_vertices(),
+                decoded.value.num_triangles(), gltf::kExtensionName, fallback ? " with fallback" : "", file_size(output));
+  }
+}
+
+void note_gltf_to_prm(const std::string& input) {
+  if (!gltf::is_gltf_path(input)) return;
+  std::fprintf(stderr,
+               "note: '%s' is a glTF asset: every triangle primitive is placed by its nodes and merged into one mesh; "
+               "a .prm stream holds no normals, UVs, colours, materials or scene (pack to a .glb/.gltf to keep them)\n",
+               input.c_str());
 }
 
 void run_gltf_unpack(const std::string& input, const std::string& output, bool as_json) {

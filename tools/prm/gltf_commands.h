@@ -19,6 +19,13 @@ void run_gltf_pack(const std::string& input, const std::string& output, const pi
 // file (.ply .obj .off .stl), and --fallback without a glTF output.
 void check_pack_output(const std::string& output, bool fallback);
 
+// prm pack IN.prm -o OUT.glb|.gltf: the stream as it is, in a one-primitive asset (no remeshing).
+void wrap_prm_stream(const std::string& input, const std::string& output, bool fallback, bool json);
+
+// prm pack IN.glb|.gltf -o OUT.prm: says on stderr that the scene is merged into one mesh and what a .prm stream
+// does not hold (nothing for other inputs).
+void note_gltf_to_prm(const std::string& input);
+
 // prm unpack IN.glb|.gltf -o OUT.glb|.gltf: every compressed primitive (PRM, Draco, meshopt) decoded into ordinary
 // accessors.
 void run_gltf_unpack(const std::string& input, const std::string& output, bool json);
