@@ -2,7 +2,8 @@
 # Installs every Debian package that PRM's build, tests, benches and demo need.
 # Usage: scripts/setup.sh [--with-meshlab]
 # Non-interactive, idempotent (skips what is installed), Debian 12; run as root or with sudo available.
-# Nothing is fetched from anywhere but Debian's package archive.
+# Nothing is fetched from anywhere but Debian's package archive, and the Khronos glTF-Validator from the npm
+# registry (tools/gltf_validator, pinned by its package-lock.json).
 set -euo pipefail
 
 packages=(
