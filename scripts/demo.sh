@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The main job on a real mesh: install what is missing, build, then repair + remesh + encode + decode + report,
-# next to Draco. Usage: scripts/demo.sh [MESH] [TARGET_RMS_ERROR]
+# next to Draco; it ends by writing the stream into a .glb and validating it. Usage: scripts/demo.sh [MESH] [TARGET_RMS_ERROR]
 #   MESH defaults to ../shared/meshes/horse.ply (the paper's horse), or CGAL's bunny00 when ../shared is absent.
 #   TARGET_RMS_ERROR is a fraction of the bounding-box diagonal (default 2e-4, the paper's regime).
 set -euo pipefail
@@ -55,5 +55,9 @@ if command -v draco_encoder >/dev/null; then
   echo "  PRM stream:   $ours bytes"
   echo "  Draco stream: $theirs bytes  (PRM is $(awk "BEGIN{printf \"%.2f\", $ours/$theirs}") of Draco)"
 fi
+echo
+echo "== 6. the stream as a compressed glTF (PRM_mesh_compression), checked by the Khronos glTF-Validator"
+$prm pack "$out/$name.prm" -o "$out/$name.glb"
+node tools/gltf_validator/validate.js "$out/$name.glb"
 echo
 echo "Outputs in $root/$out/"

@@ -208,6 +208,12 @@ bool read_regular_file(std::vector<unsigned char>* out, std::string* err, const 
   return prm_tinygltf::ReadWholeFile(out, err, file, user);
 }
 
+// Images are not decoded (only geometry is read); without a callback tinygltf refuses every textured asset.
+bool skip_image(prm_tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int,
+                void*) {
+  return true;
+}
+
 }  // namespace
 
 RawMesh read_gltf(const std::string& path) {
@@ -215,6 +221,7 @@ RawMesh read_gltf(const std::string& path) {
   prm_tinygltf::FsCallbacks fs = {&prm_tinygltf::FileExists, &prm_tinygltf::ExpandFilePath,
                                   &read_regular_file, &prm_tinygltf::WriteWholeFile, nullptr};
   loader.SetFsCallbacks(fs);
+  loader.SetImageLoader(&skip_image, nullptr);
   prm_tinygltf::Model model;
   std::string err, warn;
   const std::vector<char> head = read_file(path);  // also reports a missing file as IoError

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
+#include "gltf_commands.h"
 #include "prm/mesh_io.h"
 #include "prm/mesh_validate.h"
 #include "prm_stream_info.h"
@@ -32,6 +33,7 @@ void add_info_command(CLI::App& root) {
                 "Weld coincident vertices in every format (default: STL and glTF only)");
   cmd->add_flag("--no-weld", opt->no_weld, "Never weld");
   cmd->callback([opt] {
+    if (is_gltf_file_path(opt->input) && print_gltf_prm_info(opt->input, opt->json)) return;
     if (is_prm_stream_path(opt->input)) {
       print_prm_stream_info(opt->input, opt->json);
       return;

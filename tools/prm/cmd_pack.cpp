@@ -6,6 +6,8 @@
 
 #include "codec_cli_util.h"
 #include "commands.h"
+#include "gltf_commands.h"
+#include "prm_stream_info.h"
 #include "remesher_options.h"
 #include "prm/error.h"
 #include "prm/mesh_io.h"
@@ -22,14 +24,14 @@ void add_pack_command(CLI::App& root) {
     int bits = 0, sweeps = 4;
     std::string max_version = "1.4";
     size_t samples = 0;
-    bool json = false, no_fit = false, round_heights = false;
+    bool json = false, no_fit = false, round_heights = false, fallback = false;
     double error_flip_weight = remesh::kDefaultErrorFlipWeight;
   };
   auto opt = std::make_shared<Options>();
   cmd->add_option("input", opt->input, "Mesh file (OBJ/PLY/OFF/STL/glTF); holes are closed first")
       ->required()
       ->check(CLI::ExistingFile);
-  cmd->add_option("-o,--output", opt->output, "Output .prm stream")->required();
+  cmd->add_option("-o,--output", opt->output, "Output .prm stream, or .glb/.gltf: a glTF asset with PRM_mesh_compression (a glTF input keeps its whole scene, each triangle primitive remeshed in its own frame)")->required();
   auto* te = cmd->add_option("--target-error", opt->target,
                              "Largest RMS distance to the input, as a fraction of the bounding-box diagonal "
                              "(e.g. 2e-4): the grid size is searched")
@@ -67,12 +69,16 @@ void add_pack_command(CLI::App& root) {
                   "Newest format the stream may need, for older decoders: 1.4 (default), 1.3 (no patch contexts, spec "
                   "§8.4.1), 1.2 (no CLERS seam context either, §6.5.2)")
       ->check(CLI::IsMember({"1.2", "1.3", "1.4"}));
+  cmd->add_flag("--fallback", opt->fallback,
+                "With a .glb/.gltf output: also store the decoded geometry uncompressed, so that loaders without "
+                "PRM_mesh_compression show it (the extension is then not required)");
   cmd->add_flag("--json", opt->json, "Print the report as one JSON object");
   cmd->callback([opt] {
+    if (is_prm_stream_path(opt->input) && is_gltf_file_path(opt->output))
+      return wrap_prm_stream(opt->input, opt->output, opt->fallback, opt->json);
     if (opt->grid <= 0 && opt->grid_fraction <= 0 && opt->target <= 0)
       throw CLI::ValidationError("pack", "give one of --target-error, --grid or --grid-fraction");
-    ReadReport read;
-    const Mesh input = read_mesh(opt->input, {}, &read);
+    check_pack_output(opt->output, opt->fallback);
     pipeline::PackOptions po;
     po.target_error = opt->target;
     po.grid_size = opt->grid;
@@ -87,6 +93,10 @@ void add_pack_command(CLI::App& root) {
     po.optimize_heights = !opt->round_heights;
     po.height_sweeps = opt->sweeps;
     po.max_minor = opt->max_version[2] - '0';
+    if (is_gltf_file_path(opt->output)) return run_gltf_pack(opt->input, opt->output, po, opt->fallback, opt->json);
+    note_gltf_to_prm(opt->input);
+    ReadReport read;
+    const Mesh input = read_mesh(opt->input, {}, &read);
     pipeline::PackResult r;
     try {
       r = pipeline::pack(input, po);

@@ -6,6 +6,7 @@
 
 #include "codec_cli_util.h"
 #include "commands.h"
+#include "gltf_commands.h"
 #include "prm/error.h"
 #include "prm/mesh_io.h"
 #include "prm/pipeline/codec_bridge.h"
@@ -20,11 +21,12 @@ void add_unpack_command(CLI::App& root) {
     bool json = false;
   };
   auto opt = std::make_shared<Options>();
-  cmd->add_option("input", opt->input, ".prm stream")->required()->check(CLI::ExistingFile);
+  cmd->add_option("input", opt->input, ".prm stream, or a .glb/.gltf asset (its PRM, Draco and meshopt primitives are decoded into a plain .glb/.gltf)")->required()->check(CLI::ExistingFile);
   cmd->add_option("-o,--output", opt->output, "Output mesh file (PLY, OBJ, OFF, GLB); the format follows the extension")
       ->required();
   cmd->add_flag("--json", opt->json, "Print the report as one JSON object");
   cmd->callback([opt] {
+    if (is_gltf_file_path(opt->input)) return run_gltf_unpack(opt->input, opt->output, opt->json);
     const std::vector<uint8_t> bytes = read_file_bytes(opt->input);
     const auto t0 = std::chrono::steady_clock::now();
     codec::DecodeOptions dopt;

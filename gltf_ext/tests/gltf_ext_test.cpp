@@ -1,0 +1,265 @@
+// prm_gltf: the document layer (GLB / .gltf, compact), accessors, the extension's rules (normals, field checks),
+// which primitives pack_scene keeps and why, and hostile containers. The end-to-end cases through the prm tool and
+// the Khronos validator are the prm_gltf_cli_* tests (gltf_cli_test.cmake).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <functional>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "prm/error.h"
+#include "prm/gltf/accessors.h"
+#include "prm/gltf/decompress.h"
+#include "prm/gltf/document.h"
+#include "prm/gltf/pack_scene.h"
+#include "prm/gltf/prm_extension.h"
+#include "prm/mesh_io.h"
+
+namespace prm::gltf {
+namespace {
+
+using nlohmann::json;
+
+std::string temp_path(const std::string& name) {
+  return (std::filesystem::temp_directory_path() / ("prm_gltf_test_" + name)).string();
+}
+
+void write_bytes(const std::string& path, const std::vector<uint8_t>& bytes) {
+  std::ofstream f(path, std::ios::binary);
+  f.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+}
+
+std::vector<uint8_t> glb(const std::string& text, const std::vector<uint8_t>& bin) {
+  std::vector<uint8_t> out;
+  auto u32 = [&](uint32_t v) {
+    for (int k = 0; k < 4; ++k) out.push_back(static_cast<uint8_t>(v >> (8 * k)));
+  };
+  std::string t = text;
+  t.resize((t.size() + 3) / 4 * 4, ' ');
+  u32(0x46546C67);
+  u32(2);
+  u32(static_cast<uint32_t>(12 + 8 + t.size() + (bin.empty() ? 0 : 8 + bin.size())));
+  u32(static_cast<uint32_t>(t.size()));
+  u32(0x4E4F534A);
+  out.insert(out.end(), t.begin(), t.end());
+  if (!bin.empty()) {
+    u32(static_cast<uint32_t>(bin.size()));
+    u32(0x004E4942);
+    out.insert(out.end(), bin.begin(), bin.end());
+  }
+  return out;
+}
+
+void expect_input_error(const std::string& path, const std::string& fragment) {
+  try {
+    read_document(path);
+    ADD_FAILURE() << "no error for " << path;
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+  }
+}
+
+// A unit cube, 8 vertices, 12 outward triangles.
+Mesh cube() {
+  Mesh m;
+  for (int i = 0; i < 8; ++i) m.positions.push_back({double(i & 1), double((i >> 1) & 1), double((i >> 2) & 1)});
+  m.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                 {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+  return m;
+}
+
+TEST(GltfNormals, AreaWeightedSumOfTheTrianglesNormalized) {
+  // Two triangles in z = 0 and one standing triangle sharing vertex 0.
+  const std::vector<double> p = {0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 2, 5, 5, 5};
+  const std::vector<uint32_t> t = {0, 1, 2, 0, 3, 1};
+  const std::vector<double> n = regenerate_normals(p, t);
+  // Vertex 0: (0,0,1) (area 0.5 x 2) + (0,2,0)x... = (0, 2, 0) from triangle (0,3,1): sum (0, 2, 1) / sqrt(5).
+  EXPECT_NEAR(n[0], 0, 1e-15);
+  EXPECT_NEAR(n[1], 2 / std::sqrt(5.0), 1e-15);
+  EXPECT_NEAR(n[2], 1 / std::sqrt(5.0), 1e-15);
+  EXPECT_DOUBLE_EQ(n[6 + 2], 1.0);  // vertex 2: only the flat triangle
+  // Vertex 4 is in no triangle: (0, 0, 1) by the rule.
+  EXPECT_EQ(n[12], 0);
+  EXPECT_EQ(n[13], 0);
+  EXPECT_EQ(n[14], 1);
+}
+
+TEST(GltfDocument, GltfAndGlbRoundTripKeepJsonAndBytes) {
+  Document doc = document_from_mesh(cube(), "cube");
+  doc.json["extras"] = {{"k", "v"}};
+  doc.json["cameras"] = json::array({{{"type", "orthographic"}, {"orthographic", {{"xmag", 1}, {"ymag", 1}, {"zfar", 10}, {"znear", 0.1}}}}});
+  for (const char* ext : {".gltf", ".glb"}) {
+    Document copy = doc;
+    const std::string path = temp_path(std::string("rt") + ext);
+    write_document(copy, path);
+    const Document back = read_document(path);
+    EXPECT_EQ(back.json["extras"], doc.json["extras"]);
+    EXPECT_EQ(back.json["cameras"], doc.json["cameras"]);
+    const AccessorData pos = read_accessor(back, 0, "test");
+    ASSERT_EQ(pos.count, 8u);
+    EXPECT_EQ(pos.values[3 * 7], 1.0);
+    EXPECT_EQ(back.json["accessors"][0]["min"], json::array({0.0, 0.0, 0.0}));
+    const AccessorData idx = read_accessor(back, 1, "test");
+    EXPECT_EQ(idx.values[2], 1.0);
+  }
+}
+
+TEST(GltfDocument, CompactDropsUnusedAccessorsAndViewsAndRenumbers) {
+  Document doc = document_from_mesh(cube(), "cube");
+  // An accessor and a view nobody uses, placed before the used ones' next additions.
+  add_accessor(doc, {1, 2, 3}, kFloat, "VEC3", kArrayBuffer, true);
+  const int used = add_accessor(doc, {4, 5, 6}, kFloat, "VEC3", kArrayBuffer, true);
+  doc.json["meshes"][0]["primitives"][0]["targets"] = json::array({{{"POSITION", used}}});
+  compact(doc);
+  EXPECT_EQ(doc.json["accessors"].size(), 3u);
+  EXPECT_EQ(doc.json["bufferViews"].size(), 3u);
+  EXPECT_EQ(doc.json["meshes"][0]["primitives"][0]["targets"][0]["POSITION"], 2);
+  EXPECT_EQ(read_accessor(doc, 2, "t").values, (std::vector<double>{4, 5, 6}));
+  EXPECT_EQ(doc.buffers.size(), 1u);
+  for (const json& v : doc.json["bufferViews"]) EXPECT_EQ(v.value("byteOffset", 0) % 4, 0);
+}
+
+TEST(GltfAccessors, NormalizedStridedAndSparse) {
+  Document doc;
+  doc.path = "mem";
+  doc.json = {{"asset", {{"version", "2.0"}}}};
+  // Three VEC2 normalized shorts at stride 8 (4 bytes of padding each).
+  std::vector<uint8_t> bytes(24, 0);
+  const int16_t v[6] = {32767, -32768, 0, 16384, -1, 1};
+  for (int i = 0; i < 3; ++i) std::memcpy(bytes.data() + 8 * i, v + 2 * i, 4);
+  const int view = add_buffer_view(doc, bytes, kArrayBuffer, 8);
+  const int sparse_idx = add_buffer_view(doc, {2, 0, 0, 0});
+  std::vector<uint8_t> sv(4);
+  const int16_t s[2] = {0, 32767};
+  std::memcpy(sv.data(), s, 4);
+  const int sparse_val = add_buffer_view(doc, sv);
+  doc.json["accessors"] = json::array(
+      {{{"bufferView", view}, {"componentType", kShort}, {"normalized", true}, {"count", 3}, {"type", "VEC2"},
+        {"sparse", {{"count", 1}, {"indices", {{"bufferView", sparse_idx}, {"componentType", kUnsignedByte}}},
+                    {"values", {{"bufferView", sparse_val}}}}}}});
+  const AccessorData a = read_accessor(doc, 0, "t");
+  EXPECT_EQ(a.values, (std::vector<double>{1.0, -1.0, 0.0, 16384 / 32767.0, 0.0, 1.0}));
+  doc.json["accessors"][0]["count"] = 4;  // now past the end of the view
+  EXPECT_THROW(read_accessor(doc, 0, "t"), InputError);
+}
+
+TEST(GltfDocument, HostileContainersAreRefusedByName) {
+  const std::string p = temp_path("hostile.glb");
+  write_bytes(p, {'g', 'l', 'T', 'F', 2, 0, 0, 0});
+  expect_input_error(p, "shorter than its 12-byte header");
+  std::vector<uint8_t> g = glb(R"({"asset":{"version":"2.0"}})", {});
+  g[8] = 0xFF;  // total length beyond the file
+  write_bytes(p, g);
+  expect_input_error(p, "GLB header says");
+  write_bytes(p, glb(R"({"asset":{"version":"2.0"},)", {}));
+  expect_input_error(p, "does not parse");
+  write_bytes(p, glb(R"({"asset":{"version":"1.0"}})", {}));
+  expect_input_error(p, "asset.version");
+  write_bytes(p, glb(R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":8}]})", {1, 2, 3, 4}));
+  expect_input_error(p, "buffers[0].byteLength is 8 but its data has 4 bytes");
+  write_bytes(p, glb(R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":4}],
+                         "bufferViews":[{"buffer":0,"byteOffset":2,"byteLength":4}]})", {1, 2, 3, 4}));
+  expect_input_error(p, "bufferViews[0] (byteOffset 2, byteLength 4) reaches past the end of buffers[0]");
+  write_bytes(p, glb(R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":4,"uri":"../../etc/passwd"}]})", {}));
+  expect_input_error(p, "is not a relative path inside the asset's folder");
+  write_bytes(p, glb(R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":4,"uri":"data:application/octet-stream;base64,A$=="}]})", {}));
+  expect_input_error(p, "not base64");
+}
+
+TEST(GltfPackScene, KeepsWhatPrmCannotCarryAndSaysWhy) {
+  // Five primitives over the cube: TEXCOORD_0, COLOR_0, morph target, strip mode, skinned mesh; one plain one.
+  Document doc = document_from_mesh(cube(), "cube");
+  std::vector<double> uv(16, 0.5), colour(32, 1.0);
+  const int uv_acc = add_accessor(doc, uv, kFloat, "VEC2", kArrayBuffer, false);
+  const int col_acc = add_accessor(doc, colour, kFloat, "VEC4", kArrayBuffer, false);
+  const json base = doc.json["meshes"][0]["primitives"][0];
+  json prims = json::array();
+  json p = base;
+  p["attributes"]["TEXCOORD_0"] = uv_acc;
+  prims.push_back(p);
+  p = base;
+  p["attributes"]["COLOR_0"] = col_acc;
+  prims.push_back(p);
+  p = base;
+  p["targets"] = json::array({{{"POSITION", 0}}});
+  prims.push_back(p);
+  p = base;
+  p["mode"] = 5;
+  prims.push_back(p);
+  doc.json["meshes"][0]["primitives"] = prims;
+  doc.json["meshes"].push_back({{"primitives", json::array({base})}});
+  doc.json["nodes"].push_back({{"mesh", 1}, {"skin", 0}});
+  doc.json["skins"] = json::array({{{"joints", {0}}}});
+  ScenePackOptions o;
+  o.pack.grid_fraction = 0.2;
+  o.pack.bits = 10;
+  const json before = doc.json["meshes"];
+  const ScenePackReport r = pack_scene(doc, o);
+  ASSERT_EQ(r.primitives.size(), 5u);
+  EXPECT_NE(r.primitives[0].reason.find("TEXCOORD_0"), std::string::npos);
+  EXPECT_NE(r.primitives[1].reason.find("COLOR_0"), std::string::npos);
+  EXPECT_NE(r.primitives[2].reason.find("morph targets"), std::string::npos);
+  EXPECT_NE(r.primitives[3].reason.find("mode 5"), std::string::npos);
+  EXPECT_NE(r.primitives[4].reason.find("skinned"), std::string::npos);
+  for (const auto& pr : r.primitives) EXPECT_FALSE(pr.compressed);
+  EXPECT_EQ(doc.json["meshes"], before);  // untouched
+  EXPECT_FALSE(doc.json.contains("extensionsUsed"));
+}
+
+TEST(GltfPackScene, PacksAMeshAndTheStreamDecodesToTheAccessorCounts) {
+  const Mesh spot = read_mesh(std::string(PRM_SHARED_MESHES) + "/spot.obj");
+  Document doc = document_from_mesh(spot, "spot");
+  ScenePackOptions o;
+  o.pack.grid_fraction = 0.03;
+  o.pack.bits = 10;
+  const ScenePackReport r = pack_scene(doc, o);
+  ASSERT_EQ(r.primitives.size(), 1u);
+  ASSERT_TRUE(r.primitives[0].compressed) << r.primitives[0].reason;
+  EXPECT_GT(r.primitives[0].rms, 0);
+  EXPECT_LT(r.primitives[0].rms, 0.01);
+  EXPECT_EQ(r.primitives[0].bytes_out, r.primitives[0].stream_bytes);
+  const std::string path = temp_path("spot.glb");
+  write_document(doc, path);
+  Document back = read_document(path);
+  EXPECT_EQ(back.json["extensionsRequired"], json::array({kExtensionName}));
+  const codec::DecodedMesh d = decode_prm_primitive(back, 0, 0);
+  EXPECT_EQ(d.num_vertices(), r.primitives[0].vertices_out);
+  // A loader fills the accessors; afterwards the asset is plain.
+  EXPECT_EQ(decode_prm_primitives(back, nullptr), 1u);
+  EXPECT_FALSE(back.json.contains("extensionsUsed"));
+  EXPECT_EQ(read_accessor(back, back.json["meshes"][0]["primitives"][0]["indices"].get<int64_t>(), "t").count,
+            3 * d.num_triangles());
+}
+
+TEST(GltfExtension, MisplacedPrimitiveFieldsAreNamed) {
+  const Mesh spot = read_mesh(std::string(PRM_SHARED_MESHES) + "/spot.obj");
+  Document doc = document_from_mesh(spot, "spot");
+  ScenePackOptions o;
+  o.pack.grid_fraction = 0.05;
+  o.pack.bits = 10;
+  pack_scene(doc, o);
+  auto expect = [&](const std::function<void(json&)>& edit, const std::string& fragment) {
+    Document bad = doc;
+    edit(bad.json["meshes"][0]["primitives"][0]);
+    try {
+      decode_prm_primitive(bad, 0, 0);
+      ADD_FAILURE() << "no error, expected " << fragment;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+    }
+  };
+  expect([](json& p) { p["extensions"][kExtensionName]["extra_field"] = 1; }, "unknown property 'extra_field'");
+  expect([](json& p) { p["extensions"][kExtensionName]["version"] = "1"; }, "version must be an integer");
+  expect([](json& p) { p["extensions"][kExtensionName]["attributes"]["NORMAL"] = 1; }, "attributes.NORMAL: version 1 streams carry POSITION only");
+  expect([](json& p) { p["extensions"][kExtensionName].erase("attributes"); }, "attributes is missing");
+  expect([](json& p) { p.erase("indices"); }, "indices is missing");
+  expect([](json& p) { p["mode"] = 0; }, "mode must be 4");
+  expect([](json& p) { p["attributes"]["TEXCOORD_0"] = 0; }, "attributes.TEXCOORD_0: only POSITION and NORMAL");
+  expect([&](json& p) { p["indices"] = p["attributes"]["POSITION"]; }, "indices: accessor count");
+}
+
+}  // namespace
+}  // namespace prm::gltf

@@ -1,0 +1,283 @@
+// prm pack / unpack / info on glTF assets with PRM_mesh_compression (spec/PRM_mesh_compression/README.md).
+#include "gltf_commands.h"
+
+#include <sys/stat.h>
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cstdio>
+#include <nlohmann/json.hpp>
+
+#include "prm/error.h"
+#include "prm/gltf/decompress.h"
+#include "prm/gltf/document.h"
+#include "prm/gltf/pack_scene.h"
+#include "prm/gltf/prm_extension.h"
+#include "prm/mesh_io.h"
+#include "codec_cli_util.h"
+#include "prm_stream_info.h"
+
+namespace prm::cli {
+namespace {
+
+using nlohmann::json;
+
+size_t file_size(const std::string& path) {
+  struct stat st;
+  return ::stat(path.c_str(), &st) == 0 ? static_cast<size_t>(st.st_size) : 0;
+}
+
+std::string lower_extension(const std::string& path) {
+  const size_t dot = path.find_last_of('.');
+  if (dot == std::string::npos || path.find('/', dot) != std::string::npos) return {};
+  std::string ext = path.substr(dot + 1);
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return ext;
+}
+
+std::string label(const gltf::PrimitiveReport& r) {
+  std::string s = gltf::primitive_name(r.mesh, r.primitive);
+  if (!r.mesh_name.empty()) s += " (" + r.mesh_name + ")";
+  return s;
+}
+
+}  // namespace
+
+bool is_gltf_file_path(const std::string& path) { return gltf::is_gltf_path(path); }
+
+void check_pack_output(const std::string& output, bool fallback) {
+  const std::string ext = lower_extension(output);
+  if (ext == "ply" || ext == "obj" || ext == "off" || ext == "stl")
+    throw CLI::ValidationError("pack", "the output '" + output + "' is named like a mesh file, but pack writes a .prm "
+                               "stream or a .glb/.gltf asset (for the remeshed mesh use --keep-prm or `prm remesh`)");
+  if (fallback && !gltf::is_gltf_path(output))
+    throw CLI::ValidationError("pack", "--fallback applies to a .glb/.gltf output only");
+}
+
+void run_gltf_pack(const std::string& input, const std::string& output, const pipeline::PackOptions& options,
+                   bool fallback, bool as_json) {
+  gltf::Document doc;
+  if (gltf::is_gltf_path(input)) {
+    doc = gltf::read_document(input);
+  } else {
+    const size_t slash = input.find_last_of('/');
+    doc = gltf::document_from_mesh(read_mesh(input), slash == std::string::npos ? input : input.substr(slash + 1));
+  }
+  gltf::ScenePackOptions so;
+  so.pack = options;
+  so.fallback = fallback;
+  const gltf::ScenePackReport report = gltf::pack_scene(doc, so);
+  gltf::write_document(doc, output);
+
+  size_t bytes_in = 0, bytes_out = 0, compressed = 0;
+  for (const auto& r : report.primitives) {
+    bytes_in += r.bytes_in;
+    bytes_out += r.bytes_out;
+    compressed += r.compressed;
+  }
+  const size_t file_in = file_size(input), file_out = file_size(output);
+  if (as_json) {
+    json prims = json::array();
+    for (const auto& r : report.primitives) {
+      json p = {{"mesh", r.mesh},
+                {"primitive", r.primitive},
+                {"name", r.mesh_name},
+                {"compressed", r.compressed},
+                {"input_codec", r.input_codec},
+                {"vertices_in", r.vertices_in},
+                {"vertices_out", r.vertices_out},
+                {"triangles_in", r.triangles_in},
+                {"triangles_out", r.triangles_out},
+                {"bytes_in", r.bytes_in},
+                {"bytes_out", r.bytes_out}};
+      if (r.compressed) {
+        p["stream_bytes"] = r.stream_bytes;
+        p["bits"] = r.bits;
+        p["rms_error"] = r.rms;
+        p["max_error"] = r.max;
+        p["diagonal"] = r.diagonal;
+        p["repaired"] = r.repaired;
+      } else {
+        p["reason"] = r.reason;
+      }
+      prims.push_back(std::move(p));
+    }
+    json j = {{"input", input},
+              {"output", output},
+              {"extension", gltf::kExtensionName},
+              {"fallback", fallback},
+              {"decoded_input", {{"draco_primitives", report.input.draco_primitives},
+                                 {"meshopt_views", report.input.meshopt_views},
+                                 {"prm_primitives", report.input.prm_primitives}}},
+              {"primitives", prims},
+              {"totals", {{"primitives", report.primitives.size()},
+                          {"compressed", compressed},
+                          {"kept", report.primitives.size() - compressed},
+                          {"bytes_in", bytes_in},
+                          {"bytes_out", bytes_out},
+                          {"file_bytes_in", file_in},
+                          {"file_bytes_out", file_out}}}};
+    std::printf("%s\n", j.dump().c_str());
+    return;
+  }
+  std::printf("%s -> %s: %zu of %zu primitives compressed with %s (%s), file %zu -> %zu bytes\n", input.c_str(),
+              output.c_str(), compressed, report.primitives.size(), gltf::kExtensionName,
+              fallback ? "with uncompressed fallback" : "required", file_in, file_out);
+  if (report.input.draco_primitives || report.input.meshopt_views || report.input.prm_primitives)
+    std::printf("  decoded on input: %zu Draco primitive(s), %zu meshopt bufferView(s), %zu PRM primitive(s)\n",
+                report.input.draco_primitives, report.input.meshopt_views, report.input.prm_primitives);
+  for (const auto& r : report.primitives) {
+    if (r.compressed) {
+      std::printf("  %s: %zu -> %zu vertices, %zu -> %zu triangles, %zu -> %zu bytes%s%s, RMS %.3e max %.3e of the "
+                  "diagonal, %d bits%s\n",
+                  label(r).c_str(), r.vertices_in, r.vertices_out, r.triangles_in, r.triangles_out, r.bytes_in,
+                  r.bytes_out, r.input_codec.empty() ? "" : " (input ", r.input_codec.empty() ? "" : (r.input_codec + ")").c_str(),
+                  r.rms, r.max, r.bits, r.repaired ? ", repaired first" : "");
+    } else {
+      std::printf("  %s: kept as it was (%zu vertices, %zu bytes): %s\n", label(r).c_str(), r.vertices_in, r.bytes_out,
+                  r.reason.c_str());
+    }
+  }
+  std::printf("  total: primitives' geometry %zu -> %zu bytes\n", bytes_in, bytes_out);
+}
+
+void wrap_prm_stream(const std::string& input, const std::string& output, bool fallback, bool as_json) {
+  const std::vector<uint8_t> stream = read_file_bytes(input);
+  codec::DecodeOptions dopt;
+  dopt.positions = codec::PositionOutput::float64;
+  const auto decoded = codec::decode(stream.data(), stream.size(), dopt);
+  if (!decoded.ok()) throw InputError("'" + input + "' is not a valid PRM stream: " + describe(decoded.status));
+  gltf::Document doc;
+  doc.path = output;
+  doc.json = {{"asset", {{"version", "2.0"}, {"generator", "prm"}}},
+              {"scene", 0},
+              {"scenes", json::array({{{"nodes", {0}}}})},
+              {"nodes", json::array({{{"mesh", 0}}})},
+              {"meshes", json::array({{{"primitives", json::array({{{"attributes", json::object()}}})}}})}};
+  const size_t bytes_out = gltf::attach_prm_stream(doc, 0, 0, stream, decoded.value, fallback);
+  gltf::write_document(doc, output);
+  if (as_json) {
+    const json j = {{"input", input}, {"output", output}, {"extension", gltf::kExtensionName}, {"fallback", fallback},
+                    {"vertices", decoded.value.num_vertices()}, {"triangles", decoded.value.num_triangles()},
+                    {"stream_bytes", stream.size()}, {"bytes_out", bytes_out}, {"file_bytes_out", file_size(output)}};
+    std::printf("%s\n", j.dump().c_str());
+  } else {
+    std::printf("%s -> %s: the stream (%zu bytes, %zu vertices, %zu triangles) as it is in one %s primitive%s, file "
+                "%zu bytes\n",
+                input.c_str(), output.c_str(), stream.size(), decoded.value.num_vertices(),
+                decoded.value.num_triangles(), gltf::kExtensionName, fallback ? " with fallback" : "", file_size(output));
+  }
+}
+
+void note_gltf_to_prm(const std::string& input) {
+  if (!gltf::is_gltf_path(input)) return;
+  std::fprintf(stderr,
+               "note: '%s' is a glTF asset: every triangle primitive is placed by its nodes and merged into one mesh; "
+               "a .prm stream holds no normals, UVs, colours, materials or scene (pack to a .glb/.gltf to keep them)\n",
+               input.c_str());
+}
+
+void run_gltf_unpack(const std::string& input, const std::string& output, bool as_json) {
+  if (!gltf::is_gltf_path(output))
+    throw CLI::ValidationError("unpack", "a glTF input unpacks to a .glb or .gltf output, not '" + output + "'");
+  gltf::Document doc = gltf::read_document(input);
+  const gltf::DecompressReport report = gltf::decompress(doc);
+  gltf::write_document(doc, output);
+  if (as_json) {
+    json prims = json::array();
+    for (const auto& [key, bytes] : report.compressed_bytes)
+      prims.push_back({{"mesh", key.first}, {"primitive", key.second}, {"codec", report.codec.at(key)}, {"bytes", bytes}});
+    json j = {{"input", input},
+              {"output", output},
+              {"primitives", prims},
+              {"meshopt_views", report.meshopt_views},
+              {"file_bytes_in", file_size(input)},
+              {"file_bytes_out", file_size(output)}};
+    std::printf("%s\n", j.dump().c_str());
+    return;
+  }
+  std::printf("%s -> %s: %zu PRM, %zu Draco primitive(s) and %zu meshopt bufferView(s) decoded, file %zu -> %zu bytes\n",
+              input.c_str(), output.c_str(), report.prm_primitives, report.draco_primitives, report.meshopt_views,
+              file_size(input), file_size(output));
+}
+
+bool print_gltf_prm_info(const std::string& path, bool as_json) {
+  const gltf::Document doc = gltf::read_document(path);
+  const json& j = doc.json;
+  bool any = false;
+  if (j.contains("meshes"))
+    for (const json& m : j["meshes"])
+      if (m.contains("primitives"))
+        for (const json& p : m["primitives"]) any = any || gltf::has_prm_extension(p);
+  if (!any) return false;
+  const auto list = [&](const char* key) {
+    std::string s;
+    if (j.contains(key))
+      for (const json& e : j[key]) s += (s.empty() ? "" : ", ") + e.get<std::string>();
+    return s.empty() ? std::string("none") : s;
+  };
+  json prims = json::array();
+  size_t stream_total = 0;
+  for (size_t mi = 0; mi < j["meshes"].size(); ++mi) {
+    const json& m = j["meshes"][mi];
+    if (!m.contains("primitives")) continue;
+    for (size_t pi = 0; pi < m["primitives"].size(); ++pi) {
+      const json& p = m["primitives"][pi];
+      json entry = {{"mesh", mi}, {"primitive", pi}, {"name", m.value("name", std::string())}};
+      entry["attributes"] = json::array();
+      if (p.contains("attributes"))
+        for (const auto& [k, v] : p["attributes"].items()) entry["attributes"].push_back(k);
+      if (gltf::has_prm_extension(p)) {
+        const gltf::PrmPrimitive ext = gltf::parse_prm_extension(doc, mi, pi);
+        const codec::DecodedMesh decoded = gltf::decode_prm_primitive(doc, mi, pi);  // checks the stream and counts
+        const gltf::ByteSpan span = gltf::buffer_view_bytes(doc, ext.buffer_view, "");
+        const std::vector<uint8_t> bytes(span.data, span.data + span.size);
+        entry["prm"] = {{"bufferView", ext.buffer_view},
+                        {"version", std::to_string(bytes[4]) + "." + std::to_string(bytes[5])},
+                        {"vertices", decoded.num_vertices()},
+                        {"triangles", decoded.num_triangles()},
+                        {"bits", decoded.frame.bits},
+                        {"bytes", stream_byte_split(bytes)}};
+        const json& a = j["accessors"][p["attributes"]["POSITION"].get<size_t>()];
+        entry["fallback"] = a.contains("bufferView");
+        stream_total += bytes.size();
+      }
+      prims.push_back(std::move(entry));
+    }
+  }
+  const size_t total = file_size(path);
+  if (as_json) {
+    json out = {{"input", path},
+                {"extensionsUsed", j.value("extensionsUsed", json::array())},
+                {"extensionsRequired", j.value("extensionsRequired", json::array())},
+                {"primitives", prims},
+                {"bytes", {{"file", total}, {"prm_streams", stream_total}, {"other", total - std::min(total, stream_total)}}}};
+    std::printf("%s\n", out.dump().c_str());
+    return true;
+  }
+  std::printf("%s: glTF asset, %zu meshes, %zu nodes; extensions used: %s; required: %s\n", path.c_str(),
+              j["meshes"].size(), j.contains("nodes") ? j["nodes"].size() : size_t{0}, list("extensionsUsed").c_str(),
+              list("extensionsRequired").c_str());
+  for (const json& e : prims) {
+    std::string attrs;
+    for (const json& a : e["attributes"]) attrs += (attrs.empty() ? "" : " ") + a.get<std::string>();
+    std::printf("  %s%s [%s]: ", gltf::primitive_name(e["mesh"], e["primitive"]).c_str(),
+                e["name"].get<std::string>().empty() ? "" : (" (" + e["name"].get<std::string>() + ")").c_str(),
+                attrs.c_str());
+    if (e.contains("prm")) {
+      const json& s = e["prm"];
+      std::printf("PRM stream %s in bufferViews[%lld], %zu bytes, %zu vertices, %zu triangles, %d bits%s\n    %s\n",
+                  s["version"].get<std::string>().c_str(), s["bufferView"].get<long long>(),
+                  s["bytes"]["total"].get<size_t>(), s["vertices"].get<size_t>(), s["triangles"].get<size_t>(),
+                  s["bits"].get<int>(), e["fallback"].get<bool>() ? ", with fallback accessors" : "",
+                  describe_byte_split(s["bytes"], s["vertices"].get<size_t>()).c_str());
+    } else {
+      std::printf("uncompressed\n");
+    }
+  }
+  std::printf("  bytes: file %zu, PRM streams %zu, everything else %zu\n", total, stream_total,
+              total - std::min(total, stream_total));
+  return true;
+}
+
+}  // namespace prm::cli
