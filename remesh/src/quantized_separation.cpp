@@ -73,7 +73,7 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm) {
   };
   auto height_axis_of = [&](size_t v) {
     const int32_t r = prm.vertex_relief[v];
-    return r < 0 ? -1 : height_axis(axis_pair(prm.relief_axis[static_cast<size_t>(r)]));
+    return r < 0 ? -1 : pair_height(axis_pair(prm.relief_axis[static_cast<size_t>(r)]));
   };
   // Moving v to p: -1 if not allowed (p is outside the frame or taken, or a face around v that has an area loses it
   // or turns over), otherwise how many faces around v that had none get one. Several vertices can share a point (a
