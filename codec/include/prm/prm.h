@@ -1,9 +1,9 @@
 /* prm/prm.h: the C API of the PRM mesh codec, for C programs and for bindings (Python, Rust, C#, JS).
  *
- * A C89/C99 header over the C++ library (prm/codec.h). Every function returns a prm_status (PRM_OK = 0) and, when
- * `error` is not NULL, fills it with the error's name, message, byte offset and spec section (spec/prm-format.md
- * §4.4). No function throws, aborts or keeps global state; the decoding functions are in prm_decoder, the encoding
- * ones in prm_codec only.
+ * A C99 header (also valid C++) over the C++ library (prm/codec.h). Every function returns a prm_status
+ * (PRM_OK = 0) and, when `error` is not NULL, fills it with the error's name, message, byte offset and spec section
+ * (spec/prm-format.md §4.4). No function throws, aborts or keeps global state; the decoding functions are in
+ * prm_decoder, the encoding ones in prm_codec only.
  *
  * Decoding, with caller buffers:               Decoding, with library buffers:
  *   prm_stream_info info;                         prm_mesh* mesh = NULL;
