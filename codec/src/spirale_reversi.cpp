@@ -1,5 +1,7 @@
 #include "spirale_reversi.h"
 
+#include <algorithm>
+
 #include "corner_table.h"
 
 namespace prm::codec {
@@ -20,13 +22,13 @@ void SpiraleReversi::init(uint32_t num_triangles, uint32_t num_vertices) {
   non_manifold_ = false;
 }
 
-void SpiraleReversi::reserve_all() {
-  opp_.reserve_tail(size_t{3} * num_triangles_);
-  rec_.reserve_tail(size_t{3} * num_triangles_);
-  const size_t expect = size_t{num_triangles_} / 2 + 16;
-  parent_.reserve(expect);
-  count_.reserve(expect);
-  id_.reserve(expect);
+void SpiraleReversi::reserve(uint32_t triangles) {
+  const size_t t = std::min(triangles, num_triangles_);
+  opp_.reserve_tail(3 * t);
+  rec_.reserve_tail(3 * t);
+  parent_.reserve(t / 2 + 16);  // about one record per two triangles (V = T / 2 + 2 on a sphere)
+  count_.reserve(t / 2 + 16);
+  id_.reserve(t / 2 + 16);
 }
 
 bool SpiraleReversi::fail(const char* message) {
@@ -104,7 +106,7 @@ bool SpiraleReversi::close_vertex(uint32_t record) {
 // §6.4.3-6.4.5 One symbol applied to triangle t (corners 3t: a, 3t+1: b, 3t+2: v; gate a->b, right edge b->v,
 // left edge v->a).
 bool SpiraleReversi::apply(uint32_t t, uint8_t symbol) {
-  if (!add_triangle(t)) return false;
+  add_triangle(t);
   const uint32_t a = 3 * t, b = a + 1, v = a + 2;
   ++decoded_;
   if (symbol == kE) {  // §6.4.3 a new piece of one triangle
@@ -171,7 +173,7 @@ bool SpiraleReversi::apply(uint32_t t, uint8_t symbol) {
 // §6.4.6 An S whose left branch was consumed by its right branch: attach the right edge to the top piece, and glue
 // the left edge to the named edge of a later triangle of the same piece.
 bool SpiraleReversi::apply_handle(uint32_t t, const HandleEvent& event, uint32_t component_end) {
-  if (!add_triangle(t)) return false;
+  add_triangle(t);
   ++decoded_;
   if (stack_.empty()) return fail("handle S with no piece to attach to");
   // partner > t: a triangle decoded already.
@@ -201,7 +203,7 @@ bool SpiraleReversi::apply_handle(uint32_t t, const HandleEvent& event, uint32_t
 
 // §6.4.7 The first triangle of a component closes its only piece, whose open boundary must be three edges.
 bool SpiraleReversi::close_component(uint32_t t0) {
-  if (!add_triangle(t0)) return false;
+  add_triangle(t0);
   ++decoded_;
   if (stack_.size() != 1) return fail("a component does not end with exactly one piece");
   const uint32_t j = stack_.back();
@@ -243,15 +245,16 @@ bool SpiraleReversi::finish(std::vector<uint32_t>& corner_vertex) {
     id_[r] = id;
   }
   if (decoded_ != num_triangles_ || opp_.first() != 0) return fail("triangles missing");
-  const size_t nt = num_triangles_;
+  std::vector<int32_t>& opp = opp_.all();  // every triangle is held now
+  std::vector<uint32_t>& rec = rec_.all();
   non_manifold_ = true;
-  for (size_t c = 0; c < 3 * nt; c += 3) {
-    if ((opp_[c] | opp_[c + 1] | opp_[c + 2]) < 0) {
+  for (size_t c = 0; c < opp.size(); c += 3) {
+    if ((opp[c] | opp[c + 1] | opp[c + 2]) < 0) {
       non_manifold_ = false;
       return fail("an edge is left open");
     }
-    for (size_t i = c; i < c + 3; ++i) rec_[i] = static_cast<uint32_t>(id_[rec_[i]]);  // records become ids
-    if (rec_[c] == rec_[c + 1] || rec_[c + 1] == rec_[c + 2] || rec_[c] == rec_[c + 2])
+    for (size_t i = c; i < c + 3; ++i) rec[i] = static_cast<uint32_t>(id_[rec[i]]);  // records become ids
+    if (rec[c] == rec[c + 1] || rec[c + 1] == rec[c + 2] || rec[c] == rec[c + 2])
       return fail("a decoded triangle uses a vertex twice");
   }
   corner_vertex.swap(rec_.all());

@@ -12,6 +12,7 @@
 // triangles decoded so far (tail_table.h), and the vertex records are created as symbols create them.
 #pragma once
 
+#include <cassert>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -32,8 +33,9 @@ class SpiraleReversi {
   // §6.4.1 Starts a closed mesh of `num_triangles` triangles and `num_vertices` vertices (dummies included); allocates
   // nothing in proportion to them (§4.5).
   void init(uint32_t num_triangles, uint32_t num_vertices);
-  // Room for every triangle at once, for a caller that trusts its counts (the encoder).
-  void reserve_all();
+  // Room ahead for the next `triangles` triangles (at most all of them), for a caller that trusts its counts (the
+  // encoder; the decoder does not, §4.5).
+  void reserve(uint32_t triangles);
 
   // §6.5.2 Context inputs for the next symbol.
   uint32_t stack_depth() const { return static_cast<uint32_t>(stack_.size()); }
@@ -83,14 +85,13 @@ class SpiraleReversi {
   }
   bool close_vertex(uint32_t record);
   bool fail(const char* message);
-  // Triangle t joins the tables; false unless it is the next one in decoding order.
-  bool add_triangle(uint32_t t) {
-    if (t >= num_triangles_ || decoded_ != num_triangles_ - 1 - t) return fail("triangles applied out of order");
+  // Triangle t joins the tables. The callers apply t = T - 1 down to 0, one each (a contract, asserted).
+  void add_triangle(uint32_t t) {
+    assert(t < num_triangles_ && decoded_ == num_triangles_ - 1 - t);
     if (size_t{3} * t < opp_.first()) {  // both tables hold the same corners
       opp_.extend_to(size_t{3} * t);
       rec_.extend_to(size_t{3} * t);
     }
-    return true;
   }
   // Corner whose opposite edge is the open edge ending at the vertex of corner c (rotating away from c's outgoing
   // edge), or -1.
