@@ -598,6 +598,29 @@ void error_vectors(const fs::path& dir) {
       invalid(dir, c.name, s, c.error, c.sec, what.c_str(), c.where);
     }
   }
+  // §9.3 A height of a difference patch out of range, in the kept remeshed vector 019 (read from OUT_DIR).
+  {
+    std::ifstream f(dir / "vectors" / "019-prm-1.4-remeshed-rabbit-difference" / "stream.prm", std::ios::binary);
+    const std::vector<uint8_t> rabbit((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+    if (rabbit.empty()) {
+      std::fprintf(stderr, "OUT_DIR/vectors/019-prm-1.4-remeshed-rabbit-difference/stream.prm is needed\n");
+      std::exit(1);
+    }
+    std::string what;
+    const std::vector<uint8_t> s = mutate(rabbit, 4, 0, "bad_position", "9.3", "height", what);
+    invalid(dir, "149-difference-height-out-of-range", s, "bad_position", "9.3", what.c_str(), kS4);
+  }
+  // §3.4, §5.5 Reads past the end of a section's payload: a varint field, and a range-coded block.
+  {
+    Parts p = tp;
+    p.payload(1) = {0x01, 0x84};
+    invalid(dir, "154-truncated-connectivity-field", join(p), "truncated", "6.3",
+            "section 1 is 01 84: Component_Count 1, then Component_Size cut", kS1);
+    p = tp;
+    p.payload(2).pop_back();
+    invalid(dir, "155-truncated-positions-block", join(p), "truncated", "5.5",
+            "the tetrahedron's position block without its last byte", kS2);
+  }
   // §5.6 Bytes after the last decision of a block, in each kind of block.
   {
     const Parts pp = split(prm);
