@@ -312,6 +312,13 @@ void check_remesh_range(const Mesh& mesh) {
     throw InputError("the bounding box is " + g(extent) + " wide at coordinates up to " + g(largest) +
                      ": too narrow to quantize (at least " + g(kMinRemeshExtent) + " and " +
                      g(kMinRemeshExtentRelative) + " of the largest coordinate); scale or move the mesh");
+  double area = 0;
+  for (const Tri& t : mesh.triangles)
+    if (t[0] < mesh.positions.size() && t[1] < mesh.positions.size() && t[2] < mesh.positions.size())
+      area += triangle_area(mesh.positions[t[0]], mesh.positions[t[1]], mesh.positions[t[2]]);
+  if (!(area > kMinRemeshAreaRelative * extent * extent))
+    throw InputError("the faces have no area (" + g(area) + " in a box " + g(extent) +
+                     " wide): the vertices lie on a line, there is no surface");
 }
 
 }  // namespace prm

@@ -78,14 +78,14 @@ void expect_no_zero_area(const Mesh& input, double target, int bits) {
               r.stream.size(), r.remesh.prm.stats.quantized_moves);
 }
 
-TEST(PackDegenerate, Bowtie) { expect_no_zero_area(bowtie(), 2e-4, 12); }
+TEST(PackDegenerate, Bowtie) { expect_no_zero_area(bowtie(), 2e-4, 12); }  // 24 zero-area triangles before
 
-TEST(PackDegenerate, ThinBox) { expect_no_zero_area(box(1, 1, 0.002, 10), 2e-4, 12); }
+TEST(PackDegenerate, ThinBox) { expect_no_zero_area(box(1, 1, 0.002, 10), 2e-4, 12); }  // 6 before
 
 TEST(PackDegenerate, CgalElephant) {
   const std::string path = std::string(PRM_CGAL_MESHES) + "/elephant.off";
   if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " is missing";
-  expect_no_zero_area(prm::read_mesh(path), 2e-4, 11);
+  expect_no_zero_area(prm::read_mesh(path), 5e-4, 11);  // 5 zero-area triangles before the separation
 }
 
 TEST(PackDegenerate, RefusedBeforeRemeshing) {

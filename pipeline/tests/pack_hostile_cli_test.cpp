@@ -73,6 +73,13 @@ std::vector<Case> cases() {
   c.push_back({"large_1e70.off", off(scaled(1e70), sf), 2, "at most 1e\\+64"});
   c.push_back({"tiny_1e-300.off", off(scaled(1e-300), sf), 2, "too narrow"});
   c.push_back({"far_offset.off", off(scaled(1, {1e12, 0, 0}), sf), 2, "too narrow"});
+  auto flattened = [&](int keep) {  // the sphere projected onto an axis (keep 1) or a plane (keep 2)
+    std::vector<prm::Vec3> v;
+    for (const prm::Vec3& p : sphere.positions) v.push_back({p[0], keep > 1 ? p[1] : 0, 0});
+    return v;
+  };
+  c.push_back({"collinear.off", off(flattened(1), sf), 2, "no area"});
+  c.push_back({"flat_two_layers.off", off(flattened(2), sf), -1});
   auto with_text = [&](std::vector<prm::Vec3> v, const char* what) {
     std::string s = off(v, sf);
     const size_t line2 = s.find('\n', s.find('\n') + 1) + 1;  // the first vertex line

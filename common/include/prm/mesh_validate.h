@@ -61,8 +61,10 @@ MeshReport validate_mesh(const Mesh& mesh);
 constexpr double kMaxRemeshCoordinate = 1e64;    // largest |coordinate|
 constexpr double kMinRemeshExtent = 1e-64;       // smallest largest extent of the bounding box
 constexpr double kMinRemeshExtentRelative = 1e-9;  // ... and relative to the largest |coordinate|
-// Throws prm::InputError naming the problem when the used vertices' coordinates are outside those ranges: all
-// vertices coincide (or nearly, for the precision of their coordinates), or a coordinate is too large (or not finite).
+constexpr double kMinRemeshAreaRelative = 1e-12;   // smallest total area of the faces, relative to the extent squared
+// Throws prm::InputError naming the problem when the vertices' coordinates are outside those ranges (all vertices
+// coincide, or nearly for the precision of their coordinates, or a coordinate is too large or not finite) or when
+// the faces have no area (all vertices on a line).
 void check_remesh_range(const Mesh& mesh);
 
 }  // namespace prm
