@@ -132,6 +132,33 @@ uint32_t read_index(const View& v, size_t i) {
   return UINT32_MAX;
 }
 
+double read_position_component(const unsigned char* p, int component, bool normalized) {
+  switch (component) {
+    case TINYGLTF_COMPONENT_TYPE_FLOAT: {
+      float x;
+      std::memcpy(&x, p, 4);
+      return x;
+    }
+    case TINYGLTF_COMPONENT_TYPE_BYTE: {
+      int8_t x;
+      std::memcpy(&x, p, 1);
+      return normalized ? std::max(x / 127.0, -1.0) : x;
+    }
+    case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+      return normalized ? p[0] / 255.0 : p[0];
+    case TINYGLTF_COMPONENT_TYPE_SHORT: {
+      int16_t x;
+      std::memcpy(&x, p, 2);
+      return normalized ? std::max(x / 32767.0, -1.0) : x;
+    }
+    default: {  // UNSIGNED_SHORT
+      uint16_t x;
+      std::memcpy(&x, p, 2);
+      return normalized ? x / 65535.0 : x;
+    }
+  }
+}
+
 void add_primitive(const prm_tinygltf::Model& m, const prm_tinygltf::Primitive& prim, const Mat4& xf,
                    const std::string& path, RawMesh& raw, uint64_t max_vertices) {
   const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
@@ -143,15 +170,18 @@ void add_primitive(const prm_tinygltf::Model& m, const prm_tinygltf::Primitive& 
   const auto it = prim.attributes.find("POSITION");
   if (it == prim.attributes.end()) fail(path, "a triangle primitive has no POSITION attribute");
   const View pv = accessor_view(m, it->second, path, "POSITION");
-  if (pv.component != TINYGLTF_COMPONENT_TYPE_FLOAT || pv.elem != 12)
-    fail(path, "POSITION must be float VEC3");
+  // Float, or integers (KHR_mesh_quantization: normalized or not, placed by the node transforms).
+  const int csize = prm_tinygltf::GetComponentSizeInBytes(static_cast<uint32_t>(pv.component));
+  if (csize <= 0 || pv.elem != static_cast<size_t>(3 * csize) || pv.component == TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT)
+    fail(path, "POSITION must be VEC3 of float, or of (unsigned) bytes or shorts (KHR_mesh_quantization)");
+  const bool normalized = m.accessors[static_cast<size_t>(it->second)].normalized;
   if (raw.positions.size() + uint64_t{pv.count} > max_vertices)
     fail(path, "the nodes instance the meshes into more than " + std::to_string(max_vertices) +
                    " vertices (far more than the file stores)");
   const uint32_t base = static_cast<uint32_t>(raw.positions.size());
   for (size_t i = 0; i < pv.count; ++i) {
-    float p[3];
-    std::memcpy(p, pv.data + i * pv.stride, 12);
+    double p[3];
+    for (size_t c = 0; c < 3; ++c) p[c] = read_position_component(pv.data + i * pv.stride + c * static_cast<size_t>(csize), pv.component, normalized);
     Vec3 q;
     for (size_t r = 0; r < 3; ++r) q[r] = xf[r] * p[0] + xf[4 + r] * p[1] + xf[8 + r] * p[2] + xf[12 + r];
     raw.positions.push_back(q);

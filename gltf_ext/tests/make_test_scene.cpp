@@ -3,6 +3,9 @@
 // primitives with normals (spot, rabbit), a textured primitive with UVs (rabbit), a LINES primitive; --quantized
 // adds a mesh whose POSITION is normalized unsigned short (KHR_mesh_quantization), dequantized by its node;
 // --no-lines leaves the LINES primitive out (draco_transcoder refuses it).
+// prm_gltf_make_scene OUT --meshes MESH...: a plain scene for bench/gltf: each mesh (POSITION, NORMAL by the
+// extension's rule, indices) its own glTF mesh with its own material, placed side by side under a root node.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <string>
@@ -48,7 +51,46 @@ std::vector<uint32_t> index_list(const Mesh& m) {
 
 }  // namespace
 
+int meshes_scene(const std::string& out, const std::vector<std::string>& files) {
+  Document doc;
+  doc.json = {{"asset", {{"version", "2.0"}, {"generator", "prm_gltf_make_scene"}}}, {"scene", 0}};
+  json root = {{"name", "root"}, {"children", json::array()}};
+  doc.json["nodes"] = json::array({root});
+  doc.json["meshes"] = json::array();
+  doc.json["materials"] = json::array();
+  double x = 0;
+  for (const std::string& f : files) {
+    const Mesh m = read_mesh(f);
+    const std::vector<double> p = flat_positions(m);
+    Vec3 lo = m.positions[0], hi = lo;
+    for (const Vec3& q : m.positions)
+      for (size_t k = 0; k < 3; ++k) {
+        lo[k] = std::min(lo[k], q[k]);
+        hi[k] = std::max(hi[k], q[k]);
+      }
+    const int pos = add_accessor(doc, p, kFloat, "VEC3", kArrayBuffer, true);
+    const int nrm = add_accessor(doc, regenerate_normals(p, index_list(m)), kFloat, "VEC3", kArrayBuffer, false);
+    const int idx = add_accessor(doc, flat_indices(m), m.num_vertices() <= 65535 ? kUnsignedShort : kUnsignedInt,
+                                 "SCALAR", kElementArrayBuffer, false);
+    const size_t k = doc.json["meshes"].size();
+    const std::string name = f.substr(f.find_last_of('/') + 1);
+    doc.json["materials"].push_back({{"name", name}, {"pbrMetallicRoughness", {{"metallicFactor", 0.1 * static_cast<double>(k)}}}});
+    doc.json["meshes"].push_back({{"name", name},
+                                  {"primitives", json::array({{{"attributes", {{"POSITION", pos}, {"NORMAL", nrm}}}, {"indices", idx}, {"material", k}}})}});
+    // Scaled to a unit diagonal and placed side by side.
+    const double diag = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
+    doc.json["nodes"].push_back({{"name", name}, {"mesh", k}, {"scale", {1 / diag, 1 / diag, 1 / diag}},
+                                 {"translation", {x - lo[0] / diag, -lo[1] / diag, -lo[2] / diag}}});
+    doc.json["nodes"][0]["children"].push_back(doc.json["nodes"].size() - 1);
+    x += 1.2;
+  }
+  doc.json["scenes"] = json::array({{{"nodes", {0}}}});
+  write_document(doc, out);
+  return 0;
+}
+
 int main(int argc, char** argv) {
+  if (argc > 2 && std::string(argv[2]) == "--meshes") return meshes_scene(argv[1], std::vector<std::string>(argv + 3, argv + argc));
   if (argc < 2) {
     std::fprintf(stderr, "usage: prm_gltf_make_scene OUT.glb [--quantized] [--no-lines]\n");
     return 1;

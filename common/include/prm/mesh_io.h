@@ -23,7 +23,8 @@
 //   TRIANGLE_FAN primitive of every mesh, placed by the node transforms (matrix or TRS, composed down the
 //   hierarchy) of the default scene (or scene 0); a mesh used by several nodes appears once per node; a
 //   mirroring transform flips its triangles to keep them outward; meshes no node uses are read untransformed.
-//   POSITION must be float VEC3 (no Draco or quantized data). Points and lines are skipped and noted.
+//   POSITION is float VEC3 or quantized (KHR_mesh_quantization); no Draco or meshopt data (`prm unpack` decodes
+//   those). Points and lines are skipped and noted.
 // Then, for every format: polygons are triangulated (ear clipping in the polygon's plane; a fan for polygons
 // above 256 corners or that cannot be clipped), coincident vertices are welded (see ReadOptions), faces with
 // a repeated vertex are dropped and unreferenced vertices removed, all counted in ReadReport.
