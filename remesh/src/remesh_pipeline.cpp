@@ -131,6 +131,7 @@ RemeshResult remesh(const Mesh& input, const RemeshOptions& options, const Error
     double next = static_cast<double>(grid) * std::pow(0.97 * target / std::max(e, 1e-12), 1.0 / p);
     int64_t g = std::max<int64_t>(2, static_cast<int64_t>(std::floor(next)));
     if (best_grid > 0) g = std::max(g, best_grid + 1);
+    g = std::min(g, int64_t{1} << options.bits);  // §8.4: no larger grid fits the stream
     if (smallest_failing != INT64_MAX) g = std::min(g, smallest_failing - 1);
     if (best_grid > 0 && smallest_failing != INT64_MAX && (g <= best_grid || g >= smallest_failing))
       g = (best_grid + smallest_failing) / 2;
