@@ -10,8 +10,11 @@ using namespace prm::codec;
 
 namespace {
 
-// The C enum mirrors Error value for value.
-static_assert(static_cast<int>(PRM_ERROR_INTERNAL) == static_cast<int>(Error::internal), "prm_status != Error");
+// The C enum mirrors Error value for value: a new Error goes into prm_status (prm/prm.h) too, at the same value.
+static_assert(static_cast<int>(PRM_ERROR_INTERNAL) == static_cast<int>(Error::internal),
+              "prm_status (prm/prm.h) no longer mirrors prm::codec::Error (prm/codec.h)");
+static_assert(static_cast<int>(Error::internal) < static_cast<int>(PRM_ERROR_BUFFER_TOO_SMALL),
+              "the C API's own statuses must stay above prm::codec::Error's values");
 
 DecodeOptions decode_options(const prm_decode_limits* limits, PositionOutput positions) {
   DecodeOptions o;
@@ -45,8 +48,8 @@ const char* prm_version_string(void) { return library_version_string(); }
 
 const char* prm_status_name(int status) {
   if (status == PRM_ERROR_BUFFER_TOO_SMALL) return "buffer_too_small";
-  if (status < 0 || status > static_cast<int>(Error::internal)) return "unknown";
-  return error_name(static_cast<Error>(status));
+  if (status < 0 || status >= PRM_ERROR_BUFFER_TOO_SMALL) return "unknown";
+  return error_name(static_cast<Error>(status));  // "unknown" for a value Error does not have
 }
 
 void prm_decode_limits_default(prm_decode_limits* limits) {

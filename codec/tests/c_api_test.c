@@ -230,6 +230,7 @@ static void check_arguments(void) {
   CHECK(prm_version() == PRM_VERSION_NUMBER, "version %u", (unsigned)prm_version());
   CHECK(strcmp(prm_version_string(), PRM_VERSION_STRING) == 0, "version string %s", prm_version_string());
   CHECK(strcmp(prm_status_name(PRM_OK), "ok") == 0 && strcmp(prm_status_name(-1), "unknown") == 0 &&
+            strcmp(prm_status_name(63), "unknown") == 0 &&
             strcmp(prm_status_name(PRM_ERROR_CRC_MISMATCH), "crc_mismatch") == 0,
         "status names");
   /* NULL arguments. */

@@ -3,6 +3,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "prm/error.h"
+
 namespace prm::remesh {
 
 QuantFrame frame_of_mesh(const Mesh& mesh, int bits, double step_scale) {
@@ -16,8 +18,9 @@ QuantFrame frame_of_mesh(const Mesh& mesh, int bits, double step_scale) {
 
 HexLattice lattice_of_grid(int64_t grid, int bits) {
   if (!valid_grid_size(grid, bits))
-    throw std::invalid_argument("grid size " + std::to_string(grid) + " is outside 2..2^" + std::to_string(bits) +
-                                " quantization steps");
+    throw InputError("the grid size, " + std::to_string(grid) + " quantization steps, is outside 2..2^" +
+                     std::to_string(bits) + " (spec §8.4): at " + std::to_string(bits) +
+                     " bits a grid cannot be larger than the model's largest extent");
   return HexLattice::with_grid(grid);
 }
 

@@ -171,6 +171,7 @@ RemeshResult remesh(const Mesh& input, const RemeshOptions& options, const Error
                                    static_cast<double>(kSearchVertexGrowth) * static_cast<double>(step.vertices));
     g = std::min(std::max({g, finest, grid_for_vertices(growth)}), coarsest);
     if (best_grid > 0) g = std::max(g, best_grid + 1);
+    g = std::min(g, int64_t{1} << options.bits);  // §8.4: no larger grid fits the stream
     if (smallest_failing != INT64_MAX) g = std::min(g, smallest_failing - 1);
     if (best_grid > 0 && smallest_failing != INT64_MAX && (g <= best_grid || g >= smallest_failing))
       g = (best_grid + smallest_failing) / 2;

@@ -3,6 +3,7 @@
 #include <map>
 #include <tuple>
 
+#include "prm/error.h"
 #include "prm/remesh/lattice.h"
 #include "prm/remesh/reliefs.h"
 #include "prm/remesh/resample.h"
@@ -39,6 +40,14 @@ TEST(Lattice, GridTriangles) {
   const HexLattice l = HexLattice::with_grid(10);
   EXPECT_EQ(l.B, 5);
   EXPECT_EQ(l.C, 9);
+}
+
+// The remesher's lattice is the codec's (prm/lattice.h), with the stream's range of grid sizes: 2..2^bits (§8.4).
+TEST(Lattice, GridSizesTheStreamCanCarry) {
+  EXPECT_EQ(lattice_of_grid(4096, 12).C, HexLattice::with_grid(4096).C);
+  EXPECT_THROW(lattice_of_grid(4097, 12), InputError);
+  EXPECT_THROW(lattice_of_grid(1, 12), InputError);
+  EXPECT_THROW(frame_of_mesh(test::icosphere(1, 1.0, 0.0), 21), std::invalid_argument);
 }
 
 TEST(Resample, SphereIsClosedManifoldAndMostlyRegular) {

@@ -35,8 +35,7 @@ inline Vec3 axis_vector(int axis) {
   return v;
 }
 
-// The lattice of grid size A for a frame of `bits` bits; throws std::invalid_argument unless 2 <= A <= 2^bits
-// (spec §8.4).
+// The lattice of grid size A for a frame of `bits` bits; throws InputError unless 2 <= A <= 2^bits (spec §8.4).
 HexLattice lattice_of_grid(int64_t grid, int bits);
 
 }  // namespace prm::remesh
