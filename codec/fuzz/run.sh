@@ -48,10 +48,13 @@ seed_decode() {
     meshes=$root/../shared/meshes
     for m in spot.obj feline_5k.obj rabbit_1k_decimated.off; do
       [ -f "$meshes/$m" ] || continue
-      if nice -n 10 "$prm" pack "$meshes/$m" -o "$tmp/s.prm" --target-error 1e-3 >/dev/null 2>&1; then
+      # made once: the corpus is kept, and a pack takes a while
+      if [ ! -f "$dir/seed-pack-$m" ] &&
+         nice -n 10 "$prm" pack "$meshes/$m" -o "$tmp/s.prm" --target-error 1e-3 >/dev/null 2>&1; then
         (printf '\001'; cat "$tmp/s.prm") >"$dir/seed-pack-$m"
       fi
-      if nice -n 10 "$prm" encode "$meshes/$m" -o "$tmp/s.prm" --bits 10 >/dev/null 2>&1; then
+      if [ ! -f "$dir/seed-encode-$m" ] &&
+         nice -n 10 "$prm" encode "$meshes/$m" -o "$tmp/s.prm" --bits 10 >/dev/null 2>&1; then
         (printf '\001'; cat "$tmp/s.prm") >"$dir/seed-encode-$m"
       fi
     done
