@@ -307,7 +307,6 @@ std::vector<std::string> repair_summary(const RepairReport& r) {
     out.push_back(std::to_string(r.holes_filled) + " hole(s) closed with " + std::to_string(r.fill_triangles) +
                   " triangles");
   add(r.unreferenced_removed, "unreferenced vertices removed");
-  out.insert(out.end(), r.notes.begin(), r.notes.end());
   return out;
 }
 

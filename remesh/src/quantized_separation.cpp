@@ -100,7 +100,7 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm) {
     }
     return fixed;
   };
-  // The point within two steps that makes most faces around v whole, nearest first (from where v was before
+  // The point within `radius` steps that makes most faces around v whole, nearest first (from where v was before
   // rounding); found only if it is progress: a face made whole, or v no longer sharing its point.
   struct Move {
     bool found = false;
@@ -108,14 +108,14 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm) {
     double cost = 0;
     Q3 to{};
   };
-  auto best_move = [&](size_t v) {
+  auto best_move_within = [&](size_t v, int64_t radius) {
     const int h = height_axis_of(v);
     Vec3 u;
     for (int a = 0; a < 3; ++a) u[static_cast<size_t>(a)] = frame.to_quant(m.positions[v][static_cast<size_t>(a)], a);
     std::vector<std::pair<double, Q3>> candidates;
-    for (int64_t dx = -2; dx <= 2; ++dx)
-      for (int64_t dy = -2; dy <= 2; ++dy)
-        for (int64_t dz = -2; dz <= 2; ++dz) {
+    for (int64_t dx = -radius; dx <= radius; ++dx)
+      for (int64_t dy = -radius; dy <= radius; ++dy)
+        for (int64_t dz = -radius; dz <= radius; ++dz) {
           const Q3 d{dx, dy, dz};
           if (is_zero(d)) continue;
           // A lattice vertex keeps its place on the lattice: it moves along its relief's height axis only.
@@ -135,6 +135,11 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm) {
       best = Move{true, fixed, c.first, c.second};
     }
     return best;
+  };
+  // Two steps, or where nothing within two helps, three (a crowded spot: several vertices in a few steps).
+  auto best_move = [&](size_t v) {
+    const Move near = best_move_within(v, 2);
+    return near.found ? near : best_move_within(v, 3);
   };
   auto apply = [&](size_t v, const Q3& to) {
     const int h = height_axis_of(v);

@@ -1,7 +1,7 @@
 // What the decoder outputs is the PRM quantized to its frame. Vertices that the remesher placed less than a
 // quantization step apart (sliced vertices next to lattice points, seam vertices) can round to one point, and a
 // triangle whose corners round onto one line loses its area: the stream would not hold the mesh that was remeshed.
-// This pass moves such vertices to a nearby free quantization point, so that no triangle has zero area and no two
+// This pass moves such vertices to a nearby free quantization point (two steps, three where two do not help), so that no triangle has zero area and no two
 // vertices share a position after quantization.
 #pragma once
 

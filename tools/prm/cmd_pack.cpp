@@ -135,6 +135,7 @@ void add_pack_command(CLI::App& root) {
           {"triangles", rep.triangles},
           {"holes_closed", r.repair.holes_filled},
           {"changes", changes},
+          {"notes", r.repair.notes},
           {"grid_size", g},
           {"grid_steps", r.remesh.prm.lattice.A},
           {"tau", opt->tau},
@@ -161,6 +162,7 @@ void add_pack_command(CLI::App& root) {
       std::printf("%s -> %s: %zu bytes, %.3f bits per vertex\n", opt->input.c_str(), opt->output.c_str(),
                   rep.total_bytes, 8.0 * rep.total_bytes / n_r);
       for (const std::string& c : changes) std::printf("  changed: %s\n", c.c_str());
+      for (const std::string& n : r.repair.notes) std::printf("  note: %s\n", n.c_str());
       std::printf("  remeshed: %zu -> %u vertices, grid %.6g (%lld steps), %.1f%% regular triangles in %u patches\n",
                   input.num_vertices(), rep.vertices, g, static_cast<long long>(r.remesh.prm.lattice.A),
                   s.faces ? 100.0 * static_cast<double>(s.regular_faces) / s.faces : 0.0, rep.regular_patches);

@@ -28,8 +28,8 @@ struct RepairReport {
 // oriented (after the face removals). Properties are dropped (the face set changes); comments are kept.
 Mesh repair_mesh(const Mesh& mesh, RepairReport* report = nullptr);
 
-// What a repair changed, one phrase per kind of change it made ("removed 2 faces with a repeated vertex", "closed
-// 5 holes with 223 triangles"), then its notes; empty when it changed nothing.
+// What a repair changed, one phrase per kind of change it made ("2 duplicate face(s) removed", "5 hole(s) closed
+// with 223 triangles"); empty when it changed nothing. (What it left as it was is in report.notes.)
 std::vector<std::string> repair_summary(const RepairReport& report);
 
 }  // namespace prm
