@@ -166,7 +166,6 @@ size_t attach_prm_stream(Document& doc, size_t mesh, size_t primitive, std::vect
     for (const auto& b : doc.buffers) n += b.size();
     return n;
   }();
-  const size_t stream_bytes = stream.size();
   const int view = add_buffer_view(doc, std::move(stream));
   json& prim = primitive_json(doc, mesh, primitive);
   set_decoded_accessors(doc, prim, decoded, fallback);
@@ -175,7 +174,6 @@ size_t attach_prm_stream(Document& doc, size_t mesh, size_t primitive, std::vect
   declare_extension(doc, kExtensionName, !fallback);
   size_t after = 0;
   for (const auto& b : doc.buffers) after += b.size();
-  (void)stream_bytes;
   return after - before;
 }
 

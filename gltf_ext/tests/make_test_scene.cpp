@@ -2,7 +2,7 @@
 // TRS and matrix transforms, a camera, extras, three materials (one textured, with an embedded PNG), a mesh of two
 // primitives with normals (spot, rabbit), a textured primitive with UVs (rabbit), a LINES primitive; --quantized
 // adds a mesh whose POSITION is normalized unsigned short (KHR_mesh_quantization), dequantized by its node;
-// --no-lines leaves the LINES primitive out (draco_transcoder refuses it).
+// --no-lines leaves the LINES primitive and the camera out (draco_transcoder refuses the one and drops the other).
 // prm_gltf_make_scene OUT --meshes MESH...: a plain scene for bench/gltf: each mesh (POSITION, NORMAL by the
 // extension's rule, indices) its own glTF mesh with its own material, placed side by side under a root node.
 #include <algorithm>
@@ -177,9 +177,12 @@ int main(int argc, char** argv) {
     doc.json["nodes"][0]["children"].push_back(6);
     declare_extension(doc, "KHR_mesh_quantization", true);
   }
-  if (!lines_mesh) {  // mesh 2 goes; node 4 shows mesh 0 a second time
+  if (!lines_mesh) {  // mesh 2 goes; node 4 shows mesh 0 a second time; no camera (draco_transcoder drops cameras)
     doc.json["meshes"].erase(2);
     doc.json["nodes"][4]["mesh"] = 0;
+    doc.json["nodes"][5].erase("camera");
+    doc.json["nodes"][5]["mesh"] = 1;
+    doc.json.erase("cameras");
     if (quantized) doc.json["nodes"][6]["mesh"] = 2;
   }
   doc.json["scenes"] = json::array({{{"name", "test scene"}, {"nodes", {0}}}});
