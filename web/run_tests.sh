@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# web/run_tests.sh build WORK_DIR | conformance | browser WORK_DIR: the steps of the web ctests (web/CMakeLists.txt).
+# web/run_tests.sh build WORK_DIR | conformance | browser PRM MAKE_SCENE WORK_DIR: the steps of the web ctests (web/CMakeLists.txt).
 # Exit 77 (ctest: skipped) with a message when emcc, or for the browser test chromium or npm's packages, is absent.
 set -euo pipefail
 web="$(cd "$(dirname "$0")" && pwd)"
@@ -16,6 +16,6 @@ case "${1:-}" in
       echo "SKIPPED: /usr/bin/chromium or web/node_modules missing; scripts/setup.sh installs them" >&2
       exit 77
     fi
-    exec node --test "$web/test/browser.test.js" ;;
-  *) echo "usage: web/run_tests.sh build WORK_DIR | conformance | browser" >&2; exit 1 ;;
+    PRM="$2" MAKE_SCENE="$3" WORK="$4" exec node --test "$web/test/browser.test.js" ;;
+  *) echo "usage: web/run_tests.sh build WORK_DIR | conformance | browser PRM MAKE_SCENE WORK_DIR" >&2; exit 1 ;;
 esac
