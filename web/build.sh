@@ -27,9 +27,9 @@ for f in decode mesh_vertices mesh_triangles mesh_positions mesh_quantized mesh_
 done
 # MODULARIZE + EXPORT_ES6: a factory the ES module imports; web,worker: the page and its Web Worker (node tests hand
 # the module the .wasm bytes, so the loader never fetches). Exceptions stay disabled: the decoder catches only
-# bad_alloc, and an allocation failure aborts the instance instead.
+# bad_alloc, and an allocation failure aborts the instance instead. emmalloc: 1.9 kB smaller gzipped than dlmalloc.
 emcc -O3 -flto -DPRM_STATIC_DEFINE -I"$root/codec/include" -I"$work/include" "$web/wasm/prm_wasm.c" \
   "$work/codec/libprm_decoder.a" -o "$web/dist/prm_decoder_wasm.js" \
   -sMODULARIZE=1 -sEXPORT_ES6=1 -sEXPORT_NAME=createPrmModule -sENVIRONMENT=web,worker -sALLOW_MEMORY_GROWTH=1 \
-  -sFILESYSTEM=0 -sEXPORTED_FUNCTIONS="$exports" -sEXPORTED_RUNTIME_METHODS=UTF8ToString || exit 3
+  -sFILESYSTEM=0 -sMALLOC=emmalloc -sEXPORTED_FUNCTIONS="$exports" -sEXPORTED_RUNTIME_METHODS=UTF8ToString || exit 3
 echo "web/build.sh: $(stat -c %s "$web/dist/prm_decoder_wasm.wasm") B web/dist/prm_decoder_wasm.wasm"
