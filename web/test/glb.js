@@ -1,4 +1,5 @@
-// A minimal GLB reader for the tests (glTF 2.0 §4.4): the JSON and the BIN chunk, and an accessor's values.
+// A minimal GLB reader for the tests (the GLB container of glTF 2.0): the JSON and the BIN chunk, an accessor's
+// values.
 import fs from 'node:fs';
 
 export function readGlb(file) {
