@@ -19,6 +19,7 @@ packages=(
   libopenmesh-dev                     # half-edge mesh for the remesher's collapses and flips
   libcgal-demo                        # CGAL's data set: real meshes for tests and benches
   python3                             # bench scripts' tables
+  emscripten chromium                 # web/: the decoder in WebAssembly, the viewer's headless browser test
 )
 # The Khronos glTF-Validator (npm, run by the glTF tests) needs node and npm: Debian's, unless some node is there.
 if ! command -v npm >/dev/null 2>&1; then packages+=(nodejs npm); fi
@@ -49,5 +50,12 @@ validator_dir="$(cd "$(dirname "$0")/.." && pwd)/tools/gltf_validator"
 if [ ! -d "$validator_dir/node_modules/gltf-validator" ]; then
   echo "setup: installing the glTF validator into $validator_dir/node_modules"
   (cd "$validator_dir" && npm ci --no-audit --no-fund --loglevel=error)
+fi
+# web/'s npm packages (three, puppeteer-core; pinned by web/package-lock.json). puppeteer-core downloads no browser:
+# the tests drive Debian's /usr/bin/chromium.
+web_dir="$(cd "$(dirname "$0")/.." && pwd)/web"
+if [ ! -d "$web_dir/node_modules/three" ] || [ ! -d "$web_dir/node_modules/puppeteer-core" ]; then
+  echo "setup: installing web/'s npm packages into $web_dir/node_modules"
+  (cd "$web_dir" && PUPPETEER_SKIP_DOWNLOAD=1 npm ci --no-audit --no-fund --loglevel=error)
 fi
 echo "setup: done"
