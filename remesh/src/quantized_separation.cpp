@@ -33,7 +33,7 @@ __int128 dot(const Q3& a, const Q3& b) {
 
 }  // namespace
 
-QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm) {
+QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* input, const AabbTree* tree) {
   QuantizedSeparationStats st;
   Mesh& m = prm.mesh;
   const QuantFrame& frame = prm.frame;
@@ -65,8 +65,9 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm) {
 
   // The orientation a face must keep: its quantized normal, or where that is zero, its normal before quantization
   // (strict), or none (not strict: a sliver thinner than a step, say on the frame's boundary where the side it
-  // faced has no quantization point, may come out either way; a thin triangle is better than none).
-  bool strict = true;
+  // faced has no quantization point, may come out either way; a thin triangle is better than none). Either way, with
+  // the input at hand, a moved face never faces away from the input's surface next to it.
+  bool strict = true, use_input = true;
   auto reference = [&](size_t f) {
     const Tri& t = m.triangles[f];
     return strict ? triangle_normal_area2(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]) : Vec3{0, 0, 0};
@@ -75,6 +76,14 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm) {
     const int32_t r = prm.vertex_relief[v];
     return r < 0 ? -1 : pair_height(axis_pair(prm.relief_axis[static_cast<size_t>(r)]));
   };
+  // Where v is when moved to quantization point p: a lattice vertex only along its height axis.
+  auto real_position = [&](size_t v, const Q3& p) {
+    const int h = height_axis_of(v);
+    Vec3 x = m.positions[v];
+    for (int a = 0; a < 3; ++a)
+      if (h < 0 || a == h) x[static_cast<size_t>(a)] = frame.to_real(static_cast<double>(p[static_cast<size_t>(a)]), a);
+    return x;
+  };
   // Moving v to p: -1 if not allowed (p is outside the frame or taken, or a face around v that has an area loses it
   // or turns over), otherwise how many faces around v that had none get one. Several vertices can share a point (a
   // triangle of three): then the first move makes no face whole and is progress all the same.
@@ -82,10 +91,22 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm) {
     for (int a = 0; a < 3; ++a)
       if (p[static_cast<size_t>(a)] < 0 || p[static_cast<size_t>(a)] > top) return -1;
     if (at.count(p)) return -1;
+    const Vec3 moved = real_position(v, p);
     int fixed = 0;
     for (uint32_t k = first[v]; k < first[v + 1]; ++k) {
       const size_t f = faces_of[k];
       const Tri& t = m.triangles[f];
+      // The mesh the remesher returns (real coordinates) never turns a face over either.
+      Vec3 r[3];
+      for (int i = 0; i < 3; ++i) r[i] = t[static_cast<size_t>(i)] == v ? moved : m.positions[t[static_cast<size_t>(i)]];
+      const Vec3 nr = triangle_normal_area2(r[0], r[1], r[2]);
+      if (strict && prm::dot(nr, reference(f)) <= 0) return -1;
+      if (use_input && input && tree) {
+        const auto hit = tree->closest((r[0] + r[1] + r[2]) * (1.0 / 3.0));
+        const Tri& s = input->triangles[hit.face];
+        if (prm::dot(nr, triangle_normal_area2(input->positions[s[0]], input->positions[s[1]], input->positions[s[2]])) <= 0)
+          return -1;
+      }
       Q3 c[3];
       for (int i = 0; i < 3; ++i) c[i] = t[static_cast<size_t>(i)] == v ? p : q[t[static_cast<size_t>(i)]];
       const Q3 n = cross(minus(c[1], c[0]), minus(c[2], c[0]));
@@ -141,21 +162,21 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm) {
     const Move near = best_move_within(v, 2);
     return near.found ? near : best_move_within(v, 3);
   };
+  std::vector<uint32_t> loose;  // vertices the last pass moved
   auto apply = [&](size_t v, const Q3& to) {
-    const int h = height_axis_of(v);
     if (--at[q[v]] == 0) at.erase(q[v]);
     q[v] = to;
     ++at[q[v]];
-    for (int a = 0; a < 3; ++a)
-      if (h < 0 || a == h)
-        m.positions[v][static_cast<size_t>(a)] = frame.to_real(static_cast<double>(q[v][static_cast<size_t>(a)]), a);
+    m.positions[v] = real_position(v, to);
     ++st.moved;
+    if (!use_input) loose.push_back(static_cast<uint32_t>(v));
   };
 
   // Zero-area faces: move the corner that makes most faces whole, one off the lattices if any can (they are free in
   // all three axes, and a lattice vertex's height is a coded residual), the least; rounds until none moves, first
-  // keeping orientations, then not.
-  for (int pass = 0; pass < 2; ++pass, strict = false)
+  // keeping orientations, then not; a moved face is first also held to the input's side (a two-sided sheet, which
+  // repair makes of an open triangle, has no side: the last pass lets that go).
+  for (int pass = 0; pass < 3; ++pass, strict = false, use_input = pass < 2)
     for (int round = 0; round < 8; ++round) {
       bool moved = false;
       for (size_t f = 0; f < nf; ++f) {
@@ -190,6 +211,22 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm) {
       if (mv.found) apply(v, mv.to);
     }
 
+  // The last pass's price, counted: faces around the vertices it moved that face away from the input.
+  if (input && tree) {
+    std::vector<uint32_t> around;
+    for (uint32_t v : loose)
+      for (uint32_t k = first[v]; k < first[v + 1]; ++k) around.push_back(faces_of[k]);
+    std::sort(around.begin(), around.end());
+    around.erase(std::unique(around.begin(), around.end()), around.end());
+    for (uint32_t f : around) {
+      const Tri& t = m.triangles[f];
+      const Vec3 nr = triangle_normal_area2(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]);
+      const auto hit = tree->closest((m.positions[t[0]] + m.positions[t[1]] + m.positions[t[2]]) * (1.0 / 3.0));
+      const Tri& s = input->triangles[hit.face];
+      st.turned += prm::dot(nr, triangle_normal_area2(input->positions[s[0]], input->positions[s[1]],
+                                                      input->positions[s[2]])) <= 0;
+    }
+  }
   for (size_t f = 0; f < nf; ++f) st.unresolved += is_zero(normal(f));
   for (size_t v = 0; v < nv; ++v) st.unresolved += at[q[v]] > 1;
   return st;

@@ -7,6 +7,8 @@
 
 #include <cstddef>
 
+#include "prm/aabb_tree.h"
+#include "prm/mesh.h"
 #include "prm/remesh/resample.h"
 
 namespace prm::remesh {
@@ -16,13 +18,17 @@ struct QuantizedSeparationStats {
   size_t coincident_vertices = 0;  // vertices that shared their quantized position with another, before the pass
   size_t moved = 0;                // vertices moved (to a quantization point; lattice vertices along their height)
   size_t unresolved = 0;           // faces still of zero area, or vertices still sharing a position, after it
+  size_t turned = 0;  // faces facing away from the input after the last, loosest pass (a known defect: issue 17)
 };
 
 // prm: a merged PRM with its labels and frame. A vertex that is not on a lattice moves to one of the quantization
 // points within two steps of where it was (nearest first); a lattice vertex moves along its relief's height axis
 // by one or two steps (its lattice position, what makes a triangle regular, is kept). A move is taken only if every
 // triangle around the vertex keeps a non-zero area and its orientation; moved vertices sit exactly on their
-// quantization point, so that the search and the encoder see the same mesh.
-QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm);
+// quantization point, so that the search and the encoder see the same mesh. With the input and its tree, a move is
+// also refused if a moved triangle would face away from the input's normal at the point nearest its centroid (the
+// orientation test of the remesher's invariants).
+QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* input = nullptr,
+                                                     const AabbTree* tree = nullptr);
 
 }  // namespace prm::remesh

@@ -179,11 +179,12 @@ PrmMesh resample_and_merge(const LayoutInput& layout, const ResampleOptions& opt
   }
   // Last, since it places vertices exactly on quantization points: the stream must hold this mesh, not one with
   // collapsed triangles.
-  const QuantizedSeparationStats qs = separate_quantized_vertices(prm);
+  const QuantizedSeparationStats qs = separate_quantized_vertices(prm, &input, &tree);
   st.quantized_degenerate = qs.degenerate_faces;
   st.quantized_coincident = qs.coincident_vertices;
   st.quantized_moves = qs.moved;
   st.quantized_unresolved = qs.unresolved;
+  st.quantized_turned = qs.turned;
   store_prm_labels(prm);
   return prm;
 }
