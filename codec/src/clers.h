@@ -6,24 +6,11 @@
 #include <cstdint>
 #include <vector>
 
+#include "closed_mesh.h"
 #include "prm/codec.h"
 #include "spirale_reversi.h"
 
 namespace prm::codec {
-
-// §6.1 The closed mesh both sides agree on: triangles in forward order with canonical corners (§6.6), their
-// opposite corners, and which vertices are dummies (§6.7).
-struct ClosedMesh {
-  uint32_t num_vertices = 0;             // dummies included
-  std::vector<uint32_t> corner_vertex;   // 3 per triangle
-  std::vector<int32_t> opp;              // 3 per triangle, all >= 0
-  std::vector<uint8_t> is_dummy;         // per vertex
-  // Decoder, when there are dummies (§6.7): the output triangles and the output id of each vertex (UINT32_MAX for
-  // dummies). Without dummies the output is corner_vertex itself.
-  std::vector<uint32_t> output_triangles;
-  std::vector<uint32_t> old_to_new;
-  uint32_t num_triangles() const { return static_cast<uint32_t>(corner_vertex.size() / 3); }
-};
 
 // Everything the encoder decided: the closed mesh plus the section's fields.
 struct ConnectivityPlan {
@@ -52,6 +39,5 @@ Status write_connectivity(const ConnectivityPlan& plan, bool seam_context, std::
 // fills mesh.output_triangles and mesh.old_to_new (§6.7).
 Status read_connectivity(const uint8_t* data, size_t size, uint64_t offset, const DecodeLimits& limits,
                          uint32_t header_vertices, uint32_t header_triangles, bool seam_context, ClosedMesh& mesh);
-
 
 }  // namespace prm::codec

@@ -5,7 +5,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "clers.h"
+#include "closed_mesh.h"
 #include "corner_table.h"
 
 namespace prm::codec {

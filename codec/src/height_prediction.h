@@ -16,7 +16,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "clers.h"
+#include "closed_mesh.h"
 #include "difference_patch.h"
 #include "fan_walk.h"
 #include "signed_int_model.h"

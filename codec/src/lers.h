@@ -6,8 +6,9 @@
 #include <vector>
 
 #include "adaptive_model.h"
-#include "clers.h"
+#include "closed_mesh.h"
 #include "corner_table.h"
+#include "prm/codec.h"
 #include "regular_patches.h"
 #include "signed_int_model.h"
 

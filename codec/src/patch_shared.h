@@ -7,10 +7,11 @@
 #include <cstdint>
 #include <vector>
 
-#include "clers.h"
+#include "closed_mesh.h"
 #include "difference_patch.h"
 #include "fan_walk.h"
 #include "height_prediction.h"
+#include "prm/codec.h"
 #include "prm/lattice.h"
 #include "regular_patches.h"
 #include "signed_int_model.h"

@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "clers.h"
+#include "closed_mesh.h"
 #include "prm/codec.h"
 
 namespace prm::codec {

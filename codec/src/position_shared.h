@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "adaptive_model.h"
-#include "clers.h"
+#include "closed_mesh.h"
 #include "corner_table.h"
 #include "fan_walk.h"
 

@@ -2,10 +2,11 @@
 // decoder from the closed mesh (§6.1) and the set of irregular triangles (§7).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
-#include "clers.h"
+#include "closed_mesh.h"
 
 namespace prm::codec {
 
