@@ -13,7 +13,7 @@
 #include <string>
 #include <vector>
 
-#include "height_prediction.h"  // codec/src: the predictor table a stream enables (§9.7.2), for vector.json
+#include "height_prediction_shared.h"  // codec/src: the predictor table a stream enables (§9.7.2), for vector.json
 #include "prm/codec.h"
 #include "range_decoder.h"
 #include "range_encoder.h"

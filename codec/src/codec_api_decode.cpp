@@ -7,8 +7,8 @@
 #include "container.h"
 #include "lers.h"
 #include "limits.h"
-#include "patches.h"
-#include "positions.h"
+#include "patch.h"
+#include "position.h"
 #include "prm/codec.h"
 #include "status.h"
 

@@ -9,9 +9,9 @@
 #include "container.h"
 #include "lers.h"
 #include "limits.h"
+#include "patch.h"
 #include "patch_shared.h"
-#include "patches.h"
-#include "positions.h"
+#include "position.h"
 #include "prm/codec.h"
 #include "status.h"
 

@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <utility>
 
-#include "height_prediction.h"
+#include "height_prediction_shared.h"
 
 namespace prm::codec {
 

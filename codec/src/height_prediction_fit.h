@@ -6,7 +6,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "height_prediction.h"
+#include "height_prediction_shared.h"
 
 namespace prm::codec {
 

@@ -3,6 +3,7 @@
 #include <string>
 
 #include "lers.h"
+#include "lers_shared.h"
 #include "range_decoder.h"
 #include "status.h"
 

@@ -3,6 +3,7 @@
 #include <memory>
 
 #include "lers.h"
+#include "lers_shared.h"
 #include "range_encoder.h"
 #include "status.h"
 

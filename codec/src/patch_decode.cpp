@@ -5,8 +5,8 @@
 #include <optional>
 #include <string>
 
+#include "patch.h"
 #include "patch_shared.h"
-#include "patches.h"
 #include "range_decoder.h"
 #include "status.h"
 

@@ -8,8 +8,8 @@
 
 #include "height_choice.h"
 #include "height_prediction_fit.h"
+#include "patch.h"
 #include "patch_shared.h"
-#include "patches.h"
 #include "range_encoder.h"
 #include "status.h"
 

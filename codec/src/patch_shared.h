@@ -8,12 +8,12 @@
 #include <vector>
 
 #include "closed_mesh.h"
-#include "difference_patch.h"
+#include "difference_patch_shared.h"
 #include "fan_walk.h"
-#include "height_prediction.h"
+#include "height_prediction_shared.h"
 #include "prm/codec.h"
 #include "prm/lattice.h"
-#include "regular_patches.h"
+#include "regular_patches_shared.h"
 #include "signed_int_model.h"
 
 namespace prm::codec {

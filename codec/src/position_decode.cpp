@@ -2,8 +2,8 @@
 #include <memory>
 #include <string>
 
+#include "position.h"
 #include "position_shared.h"
-#include "positions.h"
 #include "range_decoder.h"
 #include "status.h"
 

@@ -2,8 +2,8 @@
 // residuals range coded (§10.4). The decoder side is position_decode.cpp.
 #include <memory>
 
+#include "position.h"
 #include "position_shared.h"
-#include "positions.h"
 #include "range_encoder.h"
 #include "status.h"
 

@@ -5,7 +5,7 @@
 #include <random>
 
 #include "height_choice.h"
-#include "height_prediction.h"
+#include "height_prediction_shared.h"
 
 namespace prm::codec::test {
 namespace {

@@ -4,7 +4,7 @@
 
 #include <random>
 
-#include "height_prediction.h"
+#include "height_prediction_shared.h"
 #include "height_prediction_fit.h"
 
 namespace prm::codec::test {

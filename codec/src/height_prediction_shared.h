@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "closed_mesh.h"
-#include "difference_patch.h"
+#include "difference_patch_shared.h"
 #include "fan_walk.h"
 #include "signed_int_model.h"
 

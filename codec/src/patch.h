@@ -1,5 +1,6 @@
-// §7-§9 The PRM sections' interface for the container code (codec_api.cpp): the encoder's regularity check, and
-// the patches section (§8 patch headers, §9 heights) on both sides.
+// §7-§9 The PRM sections' interface for the container code (codec_api_encode.cpp, codec_api_decode.cpp): the
+// encoder's regularity check, and the patches section (§8 patch headers, §9 heights) on both sides. What the
+// encoder (patch_encode.cpp) and the decoder (patch_decode.cpp) both run is in patch_shared.h.
 #pragma once
 
 #include <array>
