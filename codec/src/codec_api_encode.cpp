@@ -130,13 +130,24 @@ Status encode_impl(const uint32_t* q, size_t nv, const uint32_t* tris, size_t nt
     std::vector<uint32_t> coded_positions;
     // §9.4 The height coding: the caller's, or the one giving the smallest section: every difference depth, then
     // linear prediction (§9.7) with the best of them for the self-overlapping patches.
+    auto patch_coding = [&](int d, int overlap) {
+      PatchCoding c;
+      c.bits = frame.bits;
+      c.grid = prm->grid;
+      c.box_lo = h.bbox_min;
+      c.box_hi = h.bbox_max;
+      c.depth = d;
+      c.overlap_depth = overlap;
+      c.predict_every_patch = prm->predict_every_patch;
+      c.contexts = prm->patch_contexts;
+      return c;
+    };
     auto attempt = [&](int d, int overlap) -> Status {
       std::vector<uint8_t> payload, k;
       std::vector<uint32_t> chosen;
       PatchStats st;
       const bool free = freedom.exact && d == kHeightDepthPredicted;
-      PRM_TRY(write_patches(mesh, cq, frame.bits, prm->grid, h.bbox_min, h.bbox_max, tri_axis, d, overlap,
-                            prm->predict_every_patch, prm->patch_contexts, payload, k, &st, free ? &freedom : nullptr,
+      PRM_TRY(write_patches(mesh, cq, tri_axis, patch_coding(d, overlap), payload, k, &st, free ? &freedom : nullptr,
                             free ? &chosen : nullptr));
       if (depth_used < 0 || payload.size() < patch_payload.size()) {
         coded_positions = std::move(chosen);
@@ -161,9 +172,8 @@ Status encode_impl(const uint32_t* q, size_t nv, const uint32_t* tris, size_t nt
       // may cost less.
       std::vector<uint8_t> payload, k;
       PatchStats st;
-      PRM_TRY(write_patches(mesh, coded_positions, frame.bits, prm->grid, h.bbox_min, h.bbox_max, tri_axis,
-                            kHeightDepthPredicted, overlap_used, prm->predict_every_patch, prm->patch_contexts, payload,
-                            k, &st));
+      PRM_TRY(write_patches(mesh, coded_positions, tri_axis, patch_coding(kHeightDepthPredicted, overlap_used),
+                            payload, k, &st));
       if (payload.size() < patch_payload.size()) {
         patch_payload = std::move(payload);
         known = std::move(k);

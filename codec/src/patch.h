@@ -26,12 +26,23 @@ struct PatchStats {
   uint32_t predicted_patches = 0;  // §9.7: patches coded by linear prediction
 };
 
-// §8-§9 Encoder: the patches section for the regular triangles (tri_axis >= 0). `depth` 0..kMaxHeightDepth: the
-// heights by difference patches of that depth (§9.1-§9.3); kHeightDepthPredicted: by linear prediction (§9.7), the
-// self-overlapping patches by difference patches of `overlap_depth`. box_lo / box_hi: the header's quantized
-// bounding box (§3.3). Sets known[v] = 1 for every vertex of a patch (their positions are in this section).
-// `contexts`: Flags bit 3 (format 1.4): the bases from their references (§8.4.1) and the residuals' sign contexts
-// (§9.7.4).
+// §8-§9 How the encoder codes the patches section: its fields and the choices behind them.
+struct PatchCoding {
+  int bits = 0;                        // §3.3 quantization bits
+  int64_t grid = 0;                    // §8.4 Grid_Size
+  std::array<uint32_t, 3> box_lo{};    // §3.3 the header's quantized bounding box
+  std::array<uint32_t, 3> box_hi{};
+  int depth = 0;                       // §8.4 Height_Depth: 0..kMaxHeightDepth or kHeightDepthPredicted
+  int overlap_depth = 0;               // §9.7.2 Overlap_Depth (linear prediction only)
+  bool predict_every_patch = false;    // §9.7.4 Method 1 for every patch (else not for self-overlapping ones)
+  bool contexts = false;               // Flags bit 3 (format 1.4)
+};
+
+// §8-§9 Encoder: the patches section for the regular triangles (tri_axis >= 0). `coding.depth` 0..kMaxHeightDepth:
+// the heights by difference patches of that depth (§9.1-§9.3); kHeightDepthPredicted: by linear prediction (§9.7),
+// the self-overlapping patches by difference patches of `overlap_depth`. Sets known[v] = 1 for every vertex of a
+// patch (their positions are in this section). `coding.contexts`: Flags bit 3 (format 1.4): the bases from their
+// references (§8.4.1) and the residuals' sign contexts (§9.7.4).
 //
 // `freedom` (optional, linear prediction only): the exact heights before rounding, how far from them a coded height
 // may be and the Lagrange multiplier of the choice (PrmOptions::height_lambda); the encoder returns in `chosen`
@@ -42,11 +53,10 @@ struct HeightFreedom {
   double lambda = 0;                           // squared steps per bit; 0: nothing changes
   int sweeps = 0;                              // Appendix B.2 refinement sweeps (height_choice.h); 0: greedy only
 };
-Status write_patches(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, int bits, int64_t grid,
-                     const std::array<uint32_t, 3>& box_lo, const std::array<uint32_t, 3>& box_hi,
-                     const std::vector<int8_t>& tri_axis, int depth, int overlap_depth, bool predict_every_patch,
-                     bool contexts, std::vector<uint8_t>& payload, std::vector<uint8_t>& known, PatchStats* stats,
-                     const HeightFreedom* freedom = nullptr, std::vector<uint32_t>* chosen = nullptr);
+Status write_patches(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, const std::vector<int8_t>& tri_axis,
+                     const PatchCoding& coding, std::vector<uint8_t>& payload, std::vector<uint8_t>& known,
+                     PatchStats* stats, const HeightFreedom* freedom = nullptr,
+                     std::vector<uint32_t>* chosen = nullptr);
 
 // §8-§9 Decoder: positions of the patch vertices into q (3 per closed-mesh vertex), known[v] = 1 for them.
 // cls: per triangle kRegular / kIrregular / kDummyTriangle (§7).

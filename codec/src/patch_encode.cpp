@@ -118,214 +118,289 @@ struct FittedTable {
   std::array<bool, kLpSets> fitted{};
 };
 
-// write_patches, with the predictor table `given` instead of one fitted to cq (the refinement's heights are coded
-// with the table they were refined for).
-Status write_section(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, int bits, int64_t grid,
-                     const std::array<uint32_t, 3>& box_lo, const std::array<uint32_t, 3>& box_hi,
-                     const std::vector<int8_t>& tri_axis, int depth, int overlap_depth, bool predict_every_patch,
-                     bool contexts, std::vector<uint8_t>& payload, std::vector<uint8_t>& known, PatchStats* stats,
-                     const HeightFreedom* freedom, std::vector<uint32_t>* chosen, const FittedTable* given) {
-  const uint32_t nt = mesh.num_triangles();
-  std::vector<uint8_t> cls = dummy_triangles(mesh);
-  for (uint32_t t = 0; t < nt; ++t)
-    if (cls[t] != kDummyTriangle) cls[t] = tri_axis[t] >= 0 ? kRegular : kIrregular;
-  const PatchSet ps = build_patches(mesh, cls);
-  const HexLattice lc = HexLattice::with_grid(grid);
-  const bool predicted = depth == kHeightDepthPredicted;
-  RangeEncoder rc;
-  auto models = std::make_unique<PatchModels>();
-  models->lp.sign_context = contexts;
-  std::vector<uint32_t> vertex_corner;  // §10.2, for the base references (§8.4.1)
-  if (contexts) vertex_corners(mesh, vertex_corner);
-  // §8.4 Grid_Size and Height_Depth; §9.7.2 Overlap_Depth.
-  rc.encode_direct(static_cast<uint32_t>(grid), kGridBits);
-  rc.encode_direct(static_cast<uint32_t>(depth), 3);
-  if (predicted) rc.encode_direct(static_cast<uint32_t>(overlap_depth), 3);
-  auto bit = [&](BitModel& m, bool truth) {
+// The encoder's side of the coder the shared steps (patch_shared.h, height_prediction_shared.h) are written over:
+// each codes the truth it is given and returns it.
+struct EncodeBit {
+  RangeEncoder& rc;
+  bool operator()(BitModel& m, bool truth) const {
     rc.encode_bit(m, truth ? 1 : 0);
     return truth;
-  };
-  auto value = [&](SignedIntModel& m, int, int64_t truth, int64_t& out, BitModel* sign = nullptr) {
+  }
+};
+struct EncodeValue {
+  RangeEncoder& rc;
+  bool operator()(SignedIntModel& m, int, int64_t truth, int64_t& out, BitModel* sign = nullptr) const {
     encode_signed(rc, m, truth, sign ? *sign : m.sign);
     out = truth;
     return true;
-  };
-  auto direct = [&](int n, uint32_t truth) {
+  }
+};
+struct EncodeDirect {
+  RangeEncoder& rc;
+  uint32_t operator()(int n, uint32_t truth) const {
     rc.encode_direct(truth, n);
     return truth;
-  };
+  }
+};
+
+// §8-§9 One writing of the patches section, its steps in the order of the section: the fields (§8.4, §9.7.2), the
+// predictor table (§9.7.2), then per patch its header (§8.4, §8.4.1) and its heights, by linear prediction (§9.7.4)
+// or by difference patches (§9.1-§9.3).
+class PatchSectionWriter {
+ public:
+  // known: filled with 1 for every vertex of a patch. freedom (optional): as write_patches.
+  PatchSectionWriter(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, const std::vector<int8_t>& tri_axis,
+                     const PatchCoding& coding, const HeightFreedom* freedom, std::vector<uint8_t>& known)
+      : mesh_(mesh), cq_(cq), tri_axis_(tri_axis), coding_(coding), freedom_(freedom), known_(known),
+        lc_(HexLattice::with_grid(coding.grid)), predicted_(coding.depth == kHeightDepthPredicted),
+        free_heights_(freedom && freedom->exact && freedom->tolerance >= 0.5 && freedom->lambda > 0),
+        cw_(free_heights_ ? cw_copy_ : cq) {}
+
+  // write_patches, with the predictor table `given` instead of one fitted to cq (the refinement's heights are
+  // coded with the table they were refined for).
+  Status write(const FittedTable* given, std::vector<uint8_t>& payload, PatchStats* stats,
+               std::vector<uint32_t>* chosen);
+
+ private:
+  void start();
+  Status prepare(size_t p);
+  void release();
+  Status write_table(const FittedTable* given);
+  void write_header(size_t p);
+  Status write_lp_heights(size_t p);
+  Status write_difference_heights(size_t p);
+
+  const ClosedMesh& mesh_;
+  const std::vector<uint32_t>& cq_;
+  const std::vector<int8_t>& tri_axis_;
+  const PatchCoding& coding_;
+  const HeightFreedom* freedom_;
+  std::vector<uint8_t>& known_;
+  const HexLattice lc_;
+  const bool predicted_;
   // The positions as coded so far: cq, with the heights the encoder chose when it has freedom.
-  const bool free_heights = freedom && freedom->exact && freedom->tolerance >= 0.5 && freedom->lambda > 0;
-  std::vector<uint32_t> cw_copy;
-  if (free_heights) cw_copy = cq;
-  const std::vector<uint32_t>& cw = free_heights ? cw_copy : cq;
+  const bool free_heights_;
+  std::vector<uint32_t> cw_copy_;
+  const std::vector<uint32_t>& cw_;
   // A vertex in regular triangles of two axis pairs keeps its coordinates: its height for one is a lattice
   // coordinate for the other (§8.3 checks it).
-  std::vector<uint8_t> pairs_of;
-  if (free_heights) {
-    pairs_of.assign(mesh.num_vertices, 0);
-    for (uint32_t t = 0; t < mesh.num_triangles(); ++t)
-      if (tri_axis[t] >= 0)
-        for (int k = 0; k < 3; ++k) pairs_of[mesh.corner_vertex[3 * t + k]] |= static_cast<uint8_t>(1u << (tri_axis[t] / 2));
+  std::vector<uint8_t> pairs_of_;
+  PatchSet ps_;
+  RangeEncoder rc_;
+  EncodeBit bit_{rc_};
+  EncodeValue value_{rc_};
+  EncodeDirect direct_{rc_};
+  std::unique_ptr<PatchModels> models_ = std::make_unique<PatchModels>();
+  std::vector<uint32_t> vertex_corner_;  // §10.2, for the base references (§8.4.1)
+  FittedTable own_;                      // §9.7.2 the predictor table
+  // One patch: its axis, header fields, level 0 and heights.
+  std::vector<uint32_t> local_, global_, queue_;
+  Level level_;
+  std::vector<std::vector<int64_t>> f_;
+  std::vector<LevelPlan> plans_;
+  std::vector<uint32_t> tri_pos_, twin_;
+  std::vector<uint8_t> scratch_, placed_;
+  std::vector<int64_t> h_, res_;
+  LpRaster raster_;
+  int axis_ = 0, align_ = 0;
+  std::array<int64_t, 2> c0_;
+  std::array<int64_t, 2> previous_{0, 0};
+  std::optional<LpNeighbours> nb_;   // §9.7.4 for the vertices without a tap set
+  std::vector<ChosenHeight> refine_;  // Appendix B.2 the heights the refinement may move
+};
+
+// The patches, the models, and §8.4 Grid_Size and Height_Depth, §9.7.2 Overlap_Depth.
+void PatchSectionWriter::start() {
+  const uint32_t nt = mesh_.num_triangles();
+  std::vector<uint8_t> cls = dummy_triangles(mesh_);
+  for (uint32_t t = 0; t < nt; ++t)
+    if (cls[t] != kDummyTriangle) cls[t] = tri_axis_[t] >= 0 ? kRegular : kIrregular;
+  ps_ = build_patches(mesh_, cls);
+  models_->lp.sign_context = coding_.contexts;
+  if (coding_.contexts) vertex_corners(mesh_, vertex_corner_);
+  rc_.encode_direct(static_cast<uint32_t>(coding_.grid), kGridBits);
+  rc_.encode_direct(static_cast<uint32_t>(coding_.depth), 3);
+  if (predicted_) rc_.encode_direct(static_cast<uint32_t>(coding_.overlap_depth), 3);
+  if (free_heights_) {
+    cw_copy_ = cq_;
+    pairs_of_.assign(mesh_.num_vertices, 0);
+    for (uint32_t t = 0; t < nt; ++t)
+      if (tri_axis_[t] >= 0)
+        for (int k = 0; k < 3; ++k)
+          pairs_of_[mesh_.corner_vertex[3 * t + k]] |= static_cast<uint8_t>(1u << (tri_axis_[t] / 2));
   }
-  std::vector<uint32_t> local(mesh.num_vertices, UINT32_MAX), global, queue;
-  Level level;
-  std::vector<std::vector<int64_t>> f;
-  std::vector<LevelPlan> plans;
-  std::vector<uint32_t> tri_pos(mesh.num_triangles(), UINT32_MAX), twin;
-  std::vector<uint8_t> scratch, placed;
-  std::vector<int64_t> h, res;
-  LpRaster raster;
-  // §8.3 One patch's axis, header fields and level 0 (lattice coordinates), checked against the positions; leaves
-  // local[] set for the patch's vertices (release() resets it).
-  int axis = 0, align = 0;
-  std::array<int64_t, 2> c0;
-  auto prepare = [&](size_t p) -> Status {
-    const uint32_t t0 = ps.order[ps.start[p]];
-    axis = tri_axis[t0];
-    const int pair = axis / 2;
-    std::array<int64_t, 2> c1;
-    if (!lattice_of(cq, lc, pair, mesh.corner_vertex[3 * t0], c0) ||
-        !lattice_of(cq, lc, pair, mesh.corner_vertex[3 * t0 + 1], c1))
-      return make_status(Error::internal, "8.3", 0, "a regular triangle's corner is not a lattice point");
-    align = direction_index(c1[0] - c0[0], c1[1] - c0[1]);
-    // The decoder's propagation must find every vertex where it is.
-    if (!propagate_patch(mesh, ps, p, c0, align, axis % 2 == 0, level, global, local))
-      return make_status(Error::internal, "8.3", 0, "lattice conflict in patch " + std::to_string(p));
-    for (uint32_t l = 0; l < level.size(); ++l) {
-      std::array<int64_t, 2> actual;
-      if (!lattice_of(cq, lc, pair, global[l], actual) || actual != level.coord[l])
-        return make_status(Error::internal, "8.3", 0, "patch " + std::to_string(p) + " propagates off its lattice");
-    }
-    h.resize(level.size());
-    for (uint32_t l = 0; l < level.size(); ++l) h[l] = cw[3 * size_t{global[l]} + static_cast<size_t>(pair)];
+  local_.assign(mesh_.num_vertices, UINT32_MAX);
+  tri_pos_.assign(nt, UINT32_MAX);
+  known_.assign(mesh_.num_vertices, 0);
+  // Only linear-prediction streams need the neighbours (Vertex_Corner is O(T)).
+  if (predicted_) nb_.emplace(mesh_, known_, cw_.data(), local_, global_);
+}
+
+// §8.3 One patch's axis, header fields and level 0 (lattice coordinates), checked against the positions; leaves
+// local_[] set for the patch's vertices (release() resets it).
+Status PatchSectionWriter::prepare(size_t p) {
+  const uint32_t t0 = ps_.order[ps_.start[p]];
+  axis_ = tri_axis_[t0];
+  const int pair = axis_ / 2;
+  std::array<int64_t, 2> c1;
+  if (!lattice_of(cq_, lc_, pair, mesh_.corner_vertex[3 * t0], c0_) ||
+      !lattice_of(cq_, lc_, pair, mesh_.corner_vertex[3 * t0 + 1], c1))
+    return make_status(Error::internal, "8.3", 0, "a regular triangle's corner is not a lattice point");
+  align_ = direction_index(c1[0] - c0_[0], c1[1] - c0_[1]);
+  // The decoder's propagation must find every vertex where it is.
+  if (!propagate_patch(mesh_, ps_, p, c0_, align_, axis_ % 2 == 0, level_, global_, local_))
+    return make_status(Error::internal, "8.3", 0, "lattice conflict in patch " + std::to_string(p));
+  for (uint32_t l = 0; l < level_.size(); ++l) {
+    std::array<int64_t, 2> actual;
+    if (!lattice_of(cq_, lc_, pair, global_[l], actual) || actual != level_.coord[l])
+      return make_status(Error::internal, "8.3", 0, "patch " + std::to_string(p) + " propagates off its lattice");
+  }
+  h_.resize(level_.size());
+  for (uint32_t l = 0; l < level_.size(); ++l) h_[l] = cw_[3 * size_t{global_[l]} + static_cast<size_t>(pair)];
+  return ok_status();
+}
+
+void PatchSectionWriter::release() {
+  for (uint32_t v : global_) local_[v] = UINT32_MAX;
+}
+
+// §9.7.2 The predictor table: `given`, or fitted to the heights the patches will code (same placement order as
+// write()), then coded.
+Status PatchSectionWriter::write_table(const FittedTable* given) {
+  if (given) {
+    own_ = *given;
+    code_lp_table(own_.table, own_.fitted, models_->lp, direct_, value_);
     return ok_status();
-  };
-  auto release = [&] {
-    for (uint32_t v : global) local[v] = UINT32_MAX;
-  };
-  known.assign(mesh.num_vertices, 0);
-  // §9.7.4 For the vertices without a tap set; only linear-prediction streams need it (Vertex_Corner is O(T)).
-  std::optional<LpNeighbours> nb;
-  if (predicted) nb.emplace(mesh, known, cw.data(), local, global);
-  // §9.7.2 The predictor table, fitted to the heights the patches will code (same placement order as below).
-  FittedTable own;
-  LpTable& table = own.table;
-  std::array<bool, kLpSets>& fitted = own.fitted;
-  if (predicted && given) {
-    own = *given;
-    code_lp_table(table, fitted, models->lp, direct, value);
-  } else if (predicted) {
-    std::vector<LpSample> samples;
-    std::array<uint32_t, kLpOffsets> id;
-    for (size_t p = 0; p < ps.size(); ++p) {
-      PRM_TRY(prepare(p));
-      release();
-      if (use_prediction(raster.build(level), level.size(), predict_every_patch))
-        for (uint32_t l : raster.order()) {
-          LpSample smp;
-          smp.mask = raster.taps(level.coord[l][0], level.coord[l][1], id);
-          if (known[global[l]]) continue;
-          for (int t = 0; t < kLpOffsets; ++t) smp.tap[static_cast<size_t>(t)] = id[t] != LpRaster::kNone ? h[id[t]] : 0;
-          smp.h = h[l];
-          samples.push_back(smp);
-        }
-      for (uint32_t v : global) known[v] = 1;
-    }
-    fit_lp_table(samples, table, fitted);
-    code_lp_table(table, fitted, models->lp, direct, value);
-    known.assign(mesh.num_vertices, 0);
   }
-  std::vector<ChosenHeight> refine;
-  std::array<int64_t, 2> previous{0, 0};
-  uint32_t patch_vertices = 0, predicted_patches = 0;
-  for (size_t p = 0; p < ps.size(); ++p) {
+  std::vector<LpSample> samples;
+  std::array<uint32_t, kLpOffsets> id;
+  for (size_t p = 0; p < ps_.size(); ++p) {
     PRM_TRY(prepare(p));
-    const int pair = axis / 2;
-    // §8.4 The patch header; §8.4.1 the base from its reference, if it has one.
-    code_symbol8(models->axis, axis, bit);
-    std::array<int64_t, 2> near;
-    if (contexts && base_from_reference(mesh, ps, p, pair, vertex_corner, known, cw.data(), lc, near)) {
-      encode_signed(rc, models->base_ref_i, c0[0] - near[0]);
-      encode_signed(rc, models->base_ref_j, c0[1] - near[1]);
-    } else {
-      encode_signed(rc, models->base_i, c0[0] - previous[0]);
-      encode_signed(rc, models->base_j, c0[1] - previous[1]);
-    }
-    code_symbol8(models->align, align, bit);
-    previous = c0;
-    const bool lp = predicted && use_prediction(raster.build(level), level.size(), predict_every_patch);
-    if (predicted) bit(models->lp.method, lp);  // §9.7.4 Method
-    if (lp) {
-      // §9.7.4 Heights by linear prediction.
-      placed.resize(level.size());
-      for (uint32_t l = 0; l < level.size(); ++l) placed[l] = known[global[l]];
-      const int64_t lo = box_lo[static_cast<size_t>(pair)], hi = box_hi[static_cast<size_t>(pair)];
-      nb->height_axis = pair;
-      bool in_range;
-      if (free_heights) {
-        // Spec Appendix B. The window around the exact height, inside the box (a height on the box's face stays
-        // there: the box remains tight), always holding the rounded height; the choice minimises the squared distance
-        // to the exact height plus lambda times the residual's bits under the model's current state.
-        const double lambda = freedom->lambda;
-        auto window = [&](uint32_t l, int64_t given) {
-          return height_window(given, (*freedom->exact)[3 * size_t{global[l]} + static_cast<size_t>(pair)],
-                               freedom->tolerance, lo, hi, pairs_of[global[l]] == 1u << pair);
-        };
-        auto choose = [&](uint32_t l, int64_t pred, int64_t given, const SignedIntModel& model,
-                          const BitModel& sign) -> int64_t {
-          const HeightWindow w = window(l, given);
-          if (!w.free) return given;
-          int64_t best = given;
-          double best_cost = 1e300;
-          for (int64_t q = w.lo; q <= w.hi; ++q) {
-            const double d = static_cast<double>(q) - w.exact;
-            const double cost = d * d + lambda * signed_cost_bits(model, q - pred, sign);
-            if (cost < best_cost) best_cost = cost, best = q;
-          }
-          return best;
-        };
-        in_range = code_lp_heights(level, raster, table, models->lp, bits, lo, hi, placed, h, res, scratch, value,
-                                   &*nb, choose);
-        if (in_range && freedom->sweeps > 0)
-          record_heights(level, raster, table, models->lp, placed, global, h, res, scratch, pair, lo, hi, window, cq,
-                         refine);
-        for (uint32_t l = 0; l < level.size(); ++l)
-          cw_copy[3 * size_t{global[l]} + static_cast<size_t>(pair)] = static_cast<uint32_t>(h[l]);
-      } else {
-        in_range = code_lp_heights(level, raster, table, models->lp, bits, lo, hi, placed, h, res, scratch, value,
-                                   &*nb);
+    release();
+    if (use_prediction(raster_.build(level_), level_.size(), coding_.predict_every_patch))
+      for (uint32_t l : raster_.order()) {
+        LpSample smp;
+        smp.mask = raster_.taps(level_.coord[l][0], level_.coord[l][1], id);
+        if (known_[global_[l]]) continue;
+        for (int t = 0; t < kLpOffsets; ++t)
+          smp.tap[static_cast<size_t>(t)] = id[t] != LpRaster::kNone ? h_[id[t]] : 0;
+        smp.h = h_[l];
+        samples.push_back(smp);
       }
-      if (!in_range) return make_status(Error::internal, "9.7", 0, "height out of range in patch " + std::to_string(p));
+    for (uint32_t v : global_) known_[v] = 1;
+  }
+  fit_lp_table(samples, own_.table, own_.fitted);
+  code_lp_table(own_.table, own_.fitted, models_->lp, direct_, value_);
+  known_.assign(mesh_.num_vertices, 0);
+  return ok_status();
+}
+
+// §8.4 The patch header; §8.4.1 the base from its reference, if it has one.
+void PatchSectionWriter::write_header(size_t p) {
+  const int pair = axis_ / 2;
+  code_symbol8(models_->axis, axis_, bit_);
+  std::array<int64_t, 2> near;
+  if (coding_.contexts && base_from_reference(mesh_, ps_, p, pair, vertex_corner_, known_, cw_.data(), lc_, near)) {
+    encode_signed(rc_, models_->base_ref_i, c0_[0] - near[0]);
+    encode_signed(rc_, models_->base_ref_j, c0_[1] - near[1]);
+  } else {
+    encode_signed(rc_, models_->base_i, c0_[0] - previous_[0]);
+    encode_signed(rc_, models_->base_j, c0_[1] - previous_[1]);
+  }
+  code_symbol8(models_->align, align_, bit_);
+  previous_ = c0_;
+}
+
+// §9.7.4 Heights by linear prediction.
+Status PatchSectionWriter::write_lp_heights(size_t p) {
+  const int pair = axis_ / 2;
+  placed_.resize(level_.size());
+  for (uint32_t l = 0; l < level_.size(); ++l) placed_[l] = known_[global_[l]];
+  const int64_t lo = coding_.box_lo[static_cast<size_t>(pair)], hi = coding_.box_hi[static_cast<size_t>(pair)];
+  nb_->height_axis = pair;
+  bool in_range;
+  if (free_heights_) {
+    // Spec Appendix B. The window around the exact height, inside the box (a height on the box's face stays
+    // there: the box remains tight), always holding the rounded height; the choice minimises the squared distance
+    // to the exact height plus lambda times the residual's bits under the model's current state.
+    const double lambda = freedom_->lambda;
+    auto window = [&](uint32_t l, int64_t given) {
+      return height_window(given, (*freedom_->exact)[3 * size_t{global_[l]} + static_cast<size_t>(pair)],
+                           freedom_->tolerance, lo, hi, pairs_of_[global_[l]] == 1u << pair);
+    };
+    auto choose = [&](uint32_t l, int64_t pred, int64_t given, const SignedIntModel& model,
+                      const BitModel& sign) -> int64_t {
+      const HeightWindow w = window(l, given);
+      if (!w.free) return given;
+      int64_t best = given;
+      double best_cost = 1e300;
+      for (int64_t q = w.lo; q <= w.hi; ++q) {
+        const double d = static_cast<double>(q) - w.exact;
+        const double cost = d * d + lambda * signed_cost_bits(model, q - pred, sign);
+        if (cost < best_cost) best_cost = cost, best = q;
+      }
+      return best;
+    };
+    in_range = code_lp_heights(level_, raster_, own_.table, models_->lp, coding_.bits, lo, hi, placed_, h_, res_,
+                               scratch_, value_, &*nb_, choose);
+    if (in_range && freedom_->sweeps > 0)
+      record_heights(level_, raster_, own_.table, models_->lp, placed_, global_, h_, res_, scratch_, pair, lo, hi,
+                     window, cq_, refine_);
+    for (uint32_t l = 0; l < level_.size(); ++l)
+      cw_copy_[3 * size_t{global_[l]} + static_cast<size_t>(pair)] = static_cast<uint32_t>(h_[l]);
+  } else {
+    in_range = code_lp_heights(level_, raster_, own_.table, models_->lp, coding_.bits, lo, hi, placed_, h_, res_,
+                               scratch_, value_, &*nb_);
+  }
+  if (!in_range) return make_status(Error::internal, "9.7", 0, "height out of range in patch " + std::to_string(p));
+  return ok_status();
+}
+
+// §9 Heights by difference patches.
+Status PatchSectionWriter::write_difference_heights(size_t p) {
+  const int d = predicted_ ? coding_.overlap_depth : coding_.depth;
+  f_.assign(1, h_);
+  patch_side_twins(mesh_, ps_, p, tri_pos_, twin_);
+  build_levels(level_, d, plans_, &twin_);
+  if (!code_heights(level_, d, coding_.bits, models_->heights, f_, plans_, scratch_, queue_, true, value_))
+    return make_status(Error::internal, "9.3", 0, "height out of range in patch " + std::to_string(p));
+  return ok_status();
+}
+
+Status PatchSectionWriter::write(const FittedTable* given, std::vector<uint8_t>& payload, PatchStats* stats,
+                                 std::vector<uint32_t>* chosen) {
+  start();
+  if (predicted_) PRM_TRY(write_table(given));
+  uint32_t patch_vertices = 0, predicted_patches = 0;
+  for (size_t p = 0; p < ps_.size(); ++p) {
+    PRM_TRY(prepare(p));
+    write_header(p);
+    const bool lp = predicted_ && use_prediction(raster_.build(level_), level_.size(), coding_.predict_every_patch);
+    if (predicted_) bit_(models_->lp.method, lp);  // §9.7.4 Method
+    if (lp) {
+      PRM_TRY(write_lp_heights(p));
       ++predicted_patches;
     } else {
-      // §9 Heights by difference patches.
-      const int d = predicted ? overlap_depth : depth;
-      f.assign(1, h);
-      patch_side_twins(mesh, ps, p, tri_pos, twin);
-      build_levels(level, d, plans, &twin);
-      if (!code_heights(level, d, bits, models->heights, f, plans, scratch, queue, true, value))
-        return make_status(Error::internal, "9.3", 0, "height out of range in patch " + std::to_string(p));
+      PRM_TRY(write_difference_heights(p));
     }
     release();
-    for (uint32_t l = 0; l < level.size(); ++l) {
-      patch_vertices += !known[global[l]];
-      known[global[l]] = 1;
+    for (uint32_t l = 0; l < level_.size(); ++l) {
+      patch_vertices += !known_[global_[l]];
+      known_[global_[l]] = 1;
     }
   }
-  payload = rc.finish();
+  payload = rc_.finish();
   // Spec Appendix B.2: the chosen heights refined together, then coded as they are.
-  if (free_heights && freedom->sweeps > 0 && !refine.empty()) {
-    std::vector<uint32_t> q = cw;
-    refine_heights(refine, ResidualCosts::of(models->lp), freedom->lambda, freedom->sweeps, q);
-    PRM_TRY(write_section(mesh, q, bits, grid, box_lo, box_hi, tri_axis, depth, overlap_depth, predict_every_patch,
-                          contexts, payload, known, stats, nullptr, nullptr, &own));
+  if (free_heights_ && freedom_->sweeps > 0 && !refine_.empty()) {
+    std::vector<uint32_t> q = cw_;
+    refine_heights(refine_, ResidualCosts::of(models_->lp), freedom_->lambda, freedom_->sweeps, q);
+    PRM_TRY(PatchSectionWriter(mesh_, q, tri_axis_, coding_, nullptr, known_).write(&own_, payload, stats, nullptr));
     if (chosen) *chosen = q;
     return ok_status();
   }
-  if (chosen) *chosen = cw;
+  if (chosen) *chosen = cw_;
   if (stats) {
-    stats->patches = static_cast<uint32_t>(ps.size());
+    stats->patches = static_cast<uint32_t>(ps_.size());
     stats->patch_vertices = patch_vertices;
     stats->predicted_patches = predicted_patches;
   }
@@ -334,13 +409,10 @@ Status write_section(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, in
 
 }  // namespace
 
-Status write_patches(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, int bits, int64_t grid,
-                     const std::array<uint32_t, 3>& box_lo, const std::array<uint32_t, 3>& box_hi,
-                     const std::vector<int8_t>& tri_axis, int depth, int overlap_depth, bool predict_every_patch,
-                     bool contexts, std::vector<uint8_t>& payload, std::vector<uint8_t>& known, PatchStats* stats,
-                     const HeightFreedom* freedom, std::vector<uint32_t>* chosen) {
-  return write_section(mesh, cq, bits, grid, box_lo, box_hi, tri_axis, depth, overlap_depth, predict_every_patch,
-                       contexts, payload, known, stats, freedom, chosen, nullptr);
+Status write_patches(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, const std::vector<int8_t>& tri_axis,
+                     const PatchCoding& coding, std::vector<uint8_t>& payload, std::vector<uint8_t>& known,
+                     PatchStats* stats, const HeightFreedom* freedom, std::vector<uint32_t>* chosen) {
+  return PatchSectionWriter(mesh, cq, tri_axis, coding, freedom, known).write(nullptr, payload, stats, chosen);
 }
 
 }  // namespace prm::codec
