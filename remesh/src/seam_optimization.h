@@ -17,7 +17,7 @@ namespace prm::remesh {
 struct SeamOptions {
   double max_normal_angle_deg = 90.0;  // a triangle is flipped beyond this angle from the reference normal
   double grid_length = 1.0;            // the grid size in model units (sets the zero-area tolerance)
-  // Error flips after the valence flips (seam_optimization.cpp, try_error_flip): an edge with no face that may be
+  // Error flips after the valence flips (error_flips.cpp, try_error_flip): an edge with no face that may be
   // regular (the seams, the irregular triangles inside a relief) is flipped when that brings its two triangles 10%
   // closer to the input and, where it moves valences away from 6, by at least this many mean triangle errors per
   // unit of (valence - 6)^2 added. Negative: no error flips; 0: valences are not weighed.

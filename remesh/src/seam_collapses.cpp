@@ -1,0 +1,81 @@
+// Paper §2.3: loop breaking (coincident seam vertices merged) and the collapses of the vertices on relief
+// boundaries onto grid vertices, never changing the topology.
+#include <cmath>
+#include <queue>
+
+#include "prm/vec3.h"
+#include "seam_optimizer.h"
+
+namespace prm::remesh {
+
+// How far y lies from x's tangent plane (the error of moving x to y), plus a little of the distance.
+double SeamOptimizer::collapse_cost(VH x, VH y) const {
+  const Vec3 d = pos(y) - pos(x);
+  const double plane = dot(d, normals_[static_cast<size_t>(mv(x).source_face)]);
+  return plane * plane + 1e-3 * norm2(d);
+}
+
+// Loop breaking (paper §2.3): a coincident pair of seam vertices becomes one vertex where the link condition
+// allows. The geometry does not change, so no triangle test is needed.
+size_t SeamOptimizer::merge_coincident() {
+  size_t merged = 0;
+  for (const auto& [a, b] : m_.coincident) {
+    const VH x(b), y(a);
+    if (mesh_.status(x).deleted() || mesh_.status(y).deleted()) continue;
+    const HH h = mesh_.find_halfedge(x, y);
+    if (h.is_valid() && mesh_.is_collapse_ok(h)) {
+      mesh_.collapse(h);
+      ++merged;
+    }
+  }
+  return merged;
+}
+
+bool SeamOptimizer::best_lattice_target(VH x, HH& best, double& best_cost) {
+  best = HH();
+  best_cost = HUGE_VAL;
+  for (auto h : mesh_.voh_range(x)) {
+    const VH y = mesh_.to_vertex_handle(h);
+    if (!mv(y).lattice) continue;
+    const double c = collapse_cost(x, y);
+    if (c < best_cost && collapse_ok(h)) {
+      best_cost = c;
+      best = h;
+    }
+  }
+  return best.is_valid();
+}
+
+size_t SeamOptimizer::collapse_seam_vertices() {
+  struct Item {
+    double cost;
+    int x, y;
+    bool operator<(const Item& o) const { return cost > o.cost; }
+  };
+  std::priority_queue<Item> pq;
+  auto push_best = [&](VH x) {
+    HH h;
+    double c;
+    if (!mv(x).lattice && best_lattice_target(x, h, c))
+      pq.push({c, x.idx(), mesh_.to_vertex_handle(h).idx()});
+  };
+  for (auto v : mesh_.vertices()) push_best(v);
+  size_t count = 0;
+  while (!pq.empty()) {
+    const Item it = pq.top();
+    pq.pop();
+    const VH x(it.x), y(it.y);
+    if (mesh_.status(x).deleted() || mesh_.status(y).deleted()) continue;
+    const HH h = mesh_.find_halfedge(x, y);
+    if (!h.is_valid() || !collapse_ok(h)) {
+      push_best(x);
+      continue;
+    }
+    mesh_.collapse(h);
+    ++count;
+    for (auto w : mesh_.vv_range(y)) push_best(w);
+  }
+  return count;
+}
+
+}  // namespace prm::remesh
