@@ -18,7 +18,8 @@ struct QuantizedSeparationStats {
   size_t coincident_vertices = 0;  // vertices that shared their quantized position with another, before the pass
   size_t moved = 0;                // vertices moved (to a quantization point; lattice vertices along their height)
   size_t unresolved = 0;           // faces still of zero area, or vertices still sharing a position, after it
-  size_t turned = 0;  // faces facing away from the input after the last, loosest pass (a known defect: issue 17)
+  size_t collapsed = 0;            // edges collapsed: their ends shared a point and neither could move
+  size_t turned = 0;               // faces facing away from the input after the last pass, which lets that go
 };
 
 // prm: a merged PRM with its labels and frame. A vertex that is not on a lattice moves to one of the quantization
