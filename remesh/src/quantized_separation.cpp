@@ -76,9 +76,21 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* i
     const Tri& t = m.triangles[f];
     return cross(minus(q[t[1]], q[t[0]]), minus(q[t[2]], q[t[0]]));
   };
-  for (size_t f = 0; f < nf; ++f) st.degenerate_faces += is_zero(normal(f));
+  auto real_normal = [&](size_t f) {
+    const Tri& t = m.triangles[f];
+    return triangle_normal_area2(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]);
+  };
+  auto against = [](const Q3& n, const Vec3& r) { return n[0] * r[0] + n[1] * r[1] + n[2] * r[2] <= 0; };
+  // What the stream would not hold as remeshed: a face of zero area once quantized, or one that the rounding turns
+  // over (a sliver whose quantized normal points against its normal before).
+  auto turned_by_rounding = [&](size_t f) { return !is_zero(normal(f)) && against(normal(f), real_normal(f)); };
+  auto broken = [&](size_t f) { return is_zero(normal(f)) || turned_by_rounding(f); };
+  for (size_t f = 0; f < nf; ++f) {
+    st.degenerate_faces += is_zero(normal(f));
+    st.rounding_turned += turned_by_rounding(f);
+  }
   for (size_t v = 0; v < nv; ++v) st.coincident_vertices += at[q[v]] > 1;
-  if (st.degenerate_faces == 0 && st.coincident_vertices == 0) return st;
+  if (st.degenerate_faces == 0 && st.rounding_turned == 0 && st.coincident_vertices == 0) return st;
   std::vector<std::vector<uint32_t>> around(nv);  // faces around each vertex (collapses change them)
   for (size_t f = 0; f < nf; ++f)
     for (uint32_t v : m.triangles[f]) around[v].push_back(static_cast<uint32_t>(f));
@@ -90,10 +102,6 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* i
   // faced has no quantization point, may come out either way; a thin triangle is better than none). Either way, with
   // the input at hand, a moved face never faces away from the input's surface next to it.
   bool strict = true, use_input = true;
-  auto real_normal = [&](size_t f) {
-    const Tri& t = m.triangles[f];
-    return triangle_normal_area2(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]);
-  };
   auto reference = [&](size_t f) { return strict ? real_normal(f) : Vec3{0, 0, 0}; };
   // Does a face with corners r (real coordinates) and normal nr face the input's side: the orientation test of the
   // remesher's invariants, against the input's normal at the point nearest its centroid.
@@ -115,7 +123,8 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* i
     return x;
   };
   // Moving v to p: -1 if not allowed (p is outside the frame or taken, or a face around v that has an area loses it
-  // or turns over), otherwise how many faces around v that had none get one. Several vertices can share a point (a
+  // or turns over), otherwise how many faces around v that had none get one, or that the rounding had turned over
+  // are turned back. Several vertices can share a point (a
   // triangle of three): then the first move makes no face whole and is progress all the same.
   auto faces_fixed = [&](size_t v, const Q3& p) {
     for (int a = 0; a < 3; ++a)
@@ -135,7 +144,10 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* i
       for (int i = 0; i < 3; ++i) c[i] = t[static_cast<size_t>(i)] == v ? p : q[t[static_cast<size_t>(i)]];
       const Q3 n = cross(minus(c[1], c[0]), minus(c[2], c[0]));
       const Q3 old = normal(f);
-      if (!is_zero(old)) {
+      if (turned_by_rounding(f)) {
+        if (is_zero(n)) return -1;
+        fixed += !against(n, real_normal(f));
+      } else if (!is_zero(old)) {
         if (is_zero(n) || dot(n, old) <= 0) return -1;
       } else if (!is_zero(n)) {
         const Vec3 r = reference(f);
@@ -196,13 +208,13 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* i
     if (!use_input) loose.push_back(static_cast<uint32_t>(v));
   };
 
-  // Zero-area faces: move the corner that makes most faces whole, one off the lattices if any can (they are free in
+  // Zero-area faces, and faces the rounding turned over: move the corner that makes most faces whole, one off the lattices if any can (they are free in
   // all three axes, and a lattice vertex's height is a coded residual), the least; rounds until none moves.
   auto move_zero_area_corners = [&] {
     for (int round = 0; round < 8; ++round) {
       bool moved = false;
       for (size_t f = 0; f < nf; ++f) {
-        if (dead_face[f] || !is_zero(normal(f))) continue;
+        if (dead_face[f] || !broken(f)) continue;
         size_t chosen = nv;
         Move move;
         bool chosen_lattice = true;
@@ -270,9 +282,7 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* i
       const Vec3 r[3] = {m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]};
       const Vec3 nr = triangle_normal_area2(r[0], r[1], r[2]), before = real_normal(f);
       const Q3 n = cross(minus(q[t[1]], q[t[0]]), minus(q[t[2]], q[t[0]]));
-      if (is_zero(n) || prm::dot(nr, before) <= 0 || n[0] * before[0] + n[1] * before[1] + n[2] * before[2] <= 0)
-        return false;
-      if (!is_zero(normal(f)) && dot(n, normal(f)) <= 0) return false;
+      if (is_zero(n) || prm::dot(nr, before) <= 0 || against(n, before)) return false;
       if (input && tree && !faces_input_side(r, nr)) return false;
     }
     return true;
@@ -344,7 +354,7 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* i
       st.turned += !faces_input_side(r, triangle_normal_area2(r[0], r[1], r[2]));
     }
   }
-  for (size_t f = 0; f < nf; ++f) st.unresolved += !dead_face[f] && is_zero(normal(f));
+  for (size_t f = 0; f < nf; ++f) st.unresolved += !dead_face[f] && broken(f);
   for (size_t v = 0; v < nv; ++v) st.unresolved += shares_point(v);
   if (st.collapsed > 0) remove_collapsed(prm, dead_vertex, dead_face);
   return st;

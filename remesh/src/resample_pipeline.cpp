@@ -183,6 +183,7 @@ PrmMesh resample_and_merge(const LayoutInput& layout, const ResampleOptions& opt
   // collapsed triangles.
   const QuantizedSeparationStats qs = separate_quantized_vertices(prm, &input, &tree);
   st.quantized_degenerate = qs.degenerate_faces;
+  st.quantized_rounding_turned = qs.rounding_turned;
   st.quantized_coincident = qs.coincident_vertices;
   st.quantized_moves = qs.moved;
   st.quantized_unresolved = qs.unresolved;
