@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdint>
+#include <iterator>
 #include <unordered_map>
 #include <vector>
 
@@ -31,6 +32,31 @@ __int128 dot(const Q3& a, const Q3& b) {
   return static_cast<__int128>(a[0]) * b[0] + static_cast<__int128>(a[1]) * b[1] + static_cast<__int128>(a[2]) * b[2];
 }
 
+// Drops the vertices and faces that collapses removed, with their labels and properties.
+void remove_collapsed(PrmMesh& prm, const std::vector<uint8_t>& dead_vertex, const std::vector<uint8_t>& dead_face) {
+  Mesh& m = prm.mesh;
+  std::vector<uint32_t> index(dead_vertex.size(), 0);
+  uint32_t next = 0;
+  for (size_t v = 0; v < dead_vertex.size(); ++v) index[v] = dead_vertex[v] ? 0 : next++;
+  auto keep = [](auto& values, const std::vector<uint8_t>& dead) {
+    size_t n = 0;
+    for (size_t k = 0; k < dead.size(); ++k)
+      if (!dead[k]) values[n++] = values[k];
+    values.resize(n);
+  };
+  keep(m.positions, dead_vertex);
+  keep(prm.vertex_relief, dead_vertex);
+  keep(prm.lattice_i, dead_vertex);
+  keep(prm.lattice_j, dead_vertex);
+  for (Property& p : m.vertex_properties) keep(p.values, dead_vertex);
+  for (Tri& t : m.triangles)
+    for (uint32_t& c : t) c = index[c];
+  keep(m.triangles, dead_face);
+  keep(prm.face_relief, dead_face);
+  keep(prm.face_regular, dead_face);
+  for (Property& p : m.face_properties) keep(p.values, dead_face);
+}
+
 }  // namespace
 
 QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* input, const AabbTree* tree) {
@@ -50,27 +76,39 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* i
     const Tri& t = m.triangles[f];
     return cross(minus(q[t[1]], q[t[0]]), minus(q[t[2]], q[t[0]]));
   };
-  std::vector<uint32_t> first(nv + 1, 0), faces_of(3 * nf);  // faces around each vertex
-  for (const Tri& t : m.triangles)
-    for (uint32_t v : t) ++first[v + 1];
-  for (size_t v = 0; v < nv; ++v) first[v + 1] += first[v];
-  {
-    std::vector<uint32_t> fill(first.begin(), first.end() - 1);
-    for (size_t f = 0; f < nf; ++f)
-      for (uint32_t v : m.triangles[f]) faces_of[fill[v]++] = static_cast<uint32_t>(f);
+  auto real_normal = [&](size_t f) {
+    const Tri& t = m.triangles[f];
+    return triangle_normal_area2(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]);
+  };
+  auto against = [](const Q3& n, const Vec3& r) { return n[0] * r[0] + n[1] * r[1] + n[2] * r[2] <= 0; };
+  // What the stream would not hold as remeshed: a face of zero area once quantized, or one that the rounding turns
+  // over (a sliver whose quantized normal points against its normal before).
+  auto turned_by_rounding = [&](size_t f) { return !is_zero(normal(f)) && against(normal(f), real_normal(f)); };
+  auto broken = [&](size_t f) { return is_zero(normal(f)) || turned_by_rounding(f); };
+  for (size_t f = 0; f < nf; ++f) {
+    st.degenerate_faces += is_zero(normal(f));
+    st.rounding_turned += turned_by_rounding(f);
   }
-  for (size_t f = 0; f < nf; ++f) st.degenerate_faces += is_zero(normal(f));
   for (size_t v = 0; v < nv; ++v) st.coincident_vertices += at[q[v]] > 1;
-  if (st.degenerate_faces == 0 && st.coincident_vertices == 0) return st;
+  if (st.degenerate_faces == 0 && st.rounding_turned == 0 && st.coincident_vertices == 0) return st;
+  std::vector<std::vector<uint32_t>> around(nv);  // faces around each vertex (collapses change them)
+  for (size_t f = 0; f < nf; ++f)
+    for (uint32_t v : m.triangles[f]) around[v].push_back(static_cast<uint32_t>(f));
+  std::vector<uint8_t> dead_face(nf, 0), dead_vertex(nv, 0);  // removed by collapses
+  auto shares_point = [&](size_t v) { return !dead_vertex[v] && at[q[v]] > 1; };
 
   // The orientation a face must keep: its quantized normal, or where that is zero, its normal before quantization
   // (strict), or none (not strict: a sliver thinner than a step, say on the frame's boundary where the side it
   // faced has no quantization point, may come out either way; a thin triangle is better than none). Either way, with
   // the input at hand, a moved face never faces away from the input's surface next to it.
   bool strict = true, use_input = true;
-  auto reference = [&](size_t f) {
-    const Tri& t = m.triangles[f];
-    return strict ? triangle_normal_area2(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]) : Vec3{0, 0, 0};
+  auto reference = [&](size_t f) { return strict ? real_normal(f) : Vec3{0, 0, 0}; };
+  // Does a face with corners r (real coordinates) and normal nr face the input's side: the orientation test of the
+  // remesher's invariants, against the input's normal at the point nearest its centroid.
+  auto faces_input_side = [&](const Vec3 r[3], const Vec3& nr) {
+    const auto hit = tree->closest((r[0] + r[1] + r[2]) * (1.0 / 3.0));
+    const Tri& s = input->triangles[hit.face];
+    return prm::dot(nr, triangle_normal_area2(input->positions[s[0]], input->positions[s[1]], input->positions[s[2]])) > 0;
   };
   auto height_axis_of = [&](size_t v) {
     const int32_t r = prm.vertex_relief[v];
@@ -85,7 +123,8 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* i
     return x;
   };
   // Moving v to p: -1 if not allowed (p is outside the frame or taken, or a face around v that has an area loses it
-  // or turns over), otherwise how many faces around v that had none get one. Several vertices can share a point (a
+  // or turns over), otherwise how many faces around v that had none get one, or that the rounding had turned over
+  // are turned back. Several vertices can share a point (a
   // triangle of three): then the first move makes no face whole and is progress all the same.
   auto faces_fixed = [&](size_t v, const Q3& p) {
     for (int a = 0; a < 3; ++a)
@@ -93,25 +132,22 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* i
     if (at.count(p)) return -1;
     const Vec3 moved = real_position(v, p);
     int fixed = 0;
-    for (uint32_t k = first[v]; k < first[v + 1]; ++k) {
-      const size_t f = faces_of[k];
+    for (uint32_t f : around[v]) {
       const Tri& t = m.triangles[f];
       // The mesh the remesher returns (real coordinates) never turns a face over either.
       Vec3 r[3];
       for (int i = 0; i < 3; ++i) r[i] = t[static_cast<size_t>(i)] == v ? moved : m.positions[t[static_cast<size_t>(i)]];
       const Vec3 nr = triangle_normal_area2(r[0], r[1], r[2]);
       if (strict && prm::dot(nr, reference(f)) <= 0) return -1;
-      if (use_input && input && tree) {
-        const auto hit = tree->closest((r[0] + r[1] + r[2]) * (1.0 / 3.0));
-        const Tri& s = input->triangles[hit.face];
-        if (prm::dot(nr, triangle_normal_area2(input->positions[s[0]], input->positions[s[1]], input->positions[s[2]])) <= 0)
-          return -1;
-      }
+      if (use_input && input && tree && !faces_input_side(r, nr)) return -1;
       Q3 c[3];
       for (int i = 0; i < 3; ++i) c[i] = t[static_cast<size_t>(i)] == v ? p : q[t[static_cast<size_t>(i)]];
       const Q3 n = cross(minus(c[1], c[0]), minus(c[2], c[0]));
       const Q3 old = normal(f);
-      if (!is_zero(old)) {
+      if (turned_by_rounding(f)) {
+        if (is_zero(n)) return -1;
+        fixed += !against(n, real_normal(f));
+      } else if (!is_zero(old)) {
         if (is_zero(n) || dot(n, old) <= 0) return -1;
       } else if (!is_zero(n)) {
         const Vec3 r = reference(f);
@@ -172,15 +208,13 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* i
     if (!use_input) loose.push_back(static_cast<uint32_t>(v));
   };
 
-  // Zero-area faces: move the corner that makes most faces whole, one off the lattices if any can (they are free in
-  // all three axes, and a lattice vertex's height is a coded residual), the least; rounds until none moves, first
-  // keeping orientations, then not; a moved face is first also held to the input's side (a two-sided sheet, which
-  // repair makes of an open triangle, has no side: the last pass lets that go).
-  for (int pass = 0; pass < 3; ++pass, strict = false, use_input = pass < 2)
+  // Zero-area faces, and faces the rounding turned over: move the corner that makes most faces whole, one off the lattices if any can (they are free in
+  // all three axes, and a lattice vertex's height is a coded residual), the least; rounds until none moves.
+  auto move_zero_area_corners = [&] {
     for (int round = 0; round < 8; ++round) {
       bool moved = false;
       for (size_t f = 0; f < nf; ++f) {
-        if (!is_zero(normal(f))) continue;
+        if (dead_face[f] || !broken(f)) continue;
         size_t chosen = nv;
         Move move;
         bool chosen_lattice = true;
@@ -204,31 +238,125 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* i
       }
       if (!moved) break;
     }
+  };
   // Vertices still sharing a position with another (not corners of one face): move all but one.
-  for (size_t v = 0; v < nv; ++v)
-    if (at[q[v]] > 1) {
-      const Move mv = best_move(v);
-      if (mv.found) apply(v, mv.to);
+  auto separate_coincident = [&] {
+    for (size_t v = 0; v < nv; ++v)
+      if (shares_point(v)) {
+        const Move mv = best_move(v);
+        if (mv.found) apply(v, mv.to);
+      }
+  };
+
+  // Collapsing the edge (keep, gone) when its ends share a point and neither can move: gone's faces take keep (which
+  // stays where it is, less than a step away), and the edge's two faces, of zero area, go. Allowed when it keeps a
+  // closed manifold (the ends' only common neighbours are the edge's two opposite corners) and every face that takes
+  // keep has a quantized area and keeps its side (its real and quantized normals against its real normal before,
+  // and with the input, the input's side).
+  auto can_collapse = [&](uint32_t keep, uint32_t gone) {
+    std::vector<uint32_t> opposite, ring_keep, ring_gone;
+    for (uint32_t f : around[gone])
+      for (uint32_t c : m.triangles[f]) {
+        if (c != gone && c != keep) ring_gone.push_back(c);
+        if (c == keep)
+          for (uint32_t o : m.triangles[f])
+            if (o != keep && o != gone) opposite.push_back(o);
+      }
+    if (opposite.size() != 2 || opposite[0] == opposite[1]) return false;
+    for (uint32_t f : around[keep])
+      for (uint32_t c : m.triangles[f])
+        if (c != keep && c != gone) ring_keep.push_back(c);
+    for (auto* ring : {&ring_keep, &ring_gone}) {
+      std::sort(ring->begin(), ring->end());
+      ring->erase(std::unique(ring->begin(), ring->end()), ring->end());
     }
+    std::vector<uint32_t> common;
+    std::set_intersection(ring_keep.begin(), ring_keep.end(), ring_gone.begin(), ring_gone.end(),
+                          std::back_inserter(common));
+    if (common.size() != 2) return false;  // the link condition (both opposite corners are common neighbours)
+    for (uint32_t f : around[gone]) {
+      Tri t = m.triangles[f];
+      if (std::find(t.begin(), t.end(), keep) != t.end()) continue;
+      for (uint32_t& c : t)
+        if (c == gone) c = keep;
+      const Vec3 r[3] = {m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]};
+      const Vec3 nr = triangle_normal_area2(r[0], r[1], r[2]), before = real_normal(f);
+      const Q3 n = cross(minus(q[t[1]], q[t[0]]), minus(q[t[2]], q[t[0]]));
+      if (is_zero(n) || prm::dot(nr, before) <= 0 || against(n, before)) return false;
+      if (input && tree && !faces_input_side(r, nr)) return false;
+    }
+    return true;
+  };
+  auto collapse = [&](uint32_t keep, uint32_t gone) {
+    for (uint32_t f : around[gone]) {
+      Tri& t = m.triangles[f];
+      if (std::find(t.begin(), t.end(), keep) != t.end()) {
+        dead_face[f] = 1;
+        for (uint32_t c : t)
+          if (c != gone) around[c].erase(std::find(around[c].begin(), around[c].end(), f));
+        continue;
+      }
+      for (uint32_t& c : t)
+        if (c == gone) c = keep;
+      around[keep].push_back(f);
+      label_face(prm, f);
+    }
+    around[gone].clear();
+    dead_vertex[gone] = 1;
+    if (--at[q[gone]] == 0) at.erase(q[gone]);
+    ++st.collapsed;
+  };
+  // Each pair of neighbours that still share a point, by collapsing their edge (the vertex off the lattices goes, if
+  // one is: a lattice vertex's place makes triangles regular).
+  auto collapse_inseparable = [&] {
+    for (uint32_t v = 0; v < nv; ++v) {
+      if (!shares_point(v)) continue;
+      for (size_t k = 0; k < around[v].size() && shares_point(v); ++k)
+        for (uint32_t u : m.triangles[around[v][k]]) {
+          if (u == v || q[u] != q[v]) continue;
+          const bool v_free = prm.vertex_relief[v] < 0;
+          const uint32_t gone_first = v_free ? v : u, keep_first = v_free ? u : v;
+          if (can_collapse(keep_first, gone_first))
+            collapse(keep_first, gone_first);
+          else if (can_collapse(gone_first, keep_first))
+            collapse(gone_first, keep_first);
+          else
+            continue;
+          break;
+        }
+    }
+  };
+
+  // First keeping each face's side (strictly, then not), then collapsing neighbours that cannot be told apart; a
+  // last pass lets the input's side go, for a two-sided sheet (which repair makes of an open triangle, and which
+  // has no side) and whatever is left.
+  move_zero_area_corners();
+  strict = false;
+  move_zero_area_corners();
+  for (bool s : {true, false}) {
+    strict = s;
+    separate_coincident();
+  }
+  collapse_inseparable();
+  use_input = false;
+  move_zero_area_corners();
+  separate_coincident();
 
   // The last pass's price, counted: faces around the vertices it moved that face away from the input.
   if (input && tree) {
-    std::vector<uint32_t> around;
-    for (uint32_t v : loose)
-      for (uint32_t k = first[v]; k < first[v + 1]; ++k) around.push_back(faces_of[k]);
-    std::sort(around.begin(), around.end());
-    around.erase(std::unique(around.begin(), around.end()), around.end());
-    for (uint32_t f : around) {
+    std::vector<uint32_t> turned_faces;
+    for (uint32_t v : loose) turned_faces.insert(turned_faces.end(), around[v].begin(), around[v].end());
+    std::sort(turned_faces.begin(), turned_faces.end());
+    turned_faces.erase(std::unique(turned_faces.begin(), turned_faces.end()), turned_faces.end());
+    for (uint32_t f : turned_faces) {
       const Tri& t = m.triangles[f];
-      const Vec3 nr = triangle_normal_area2(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]);
-      const auto hit = tree->closest((m.positions[t[0]] + m.positions[t[1]] + m.positions[t[2]]) * (1.0 / 3.0));
-      const Tri& s = input->triangles[hit.face];
-      st.turned += prm::dot(nr, triangle_normal_area2(input->positions[s[0]], input->positions[s[1]],
-                                                      input->positions[s[2]])) <= 0;
+      const Vec3 r[3] = {m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]};
+      st.turned += !faces_input_side(r, triangle_normal_area2(r[0], r[1], r[2]));
     }
   }
-  for (size_t f = 0; f < nf; ++f) st.unresolved += is_zero(normal(f));
-  for (size_t v = 0; v < nv; ++v) st.unresolved += at[q[v]] > 1;
+  for (size_t f = 0; f < nf; ++f) st.unresolved += !dead_face[f] && broken(f);
+  for (size_t v = 0; v < nv; ++v) st.unresolved += shares_point(v);
+  if (st.collapsed > 0) remove_collapsed(prm, dead_vertex, dead_face);
   return st;
 }
 

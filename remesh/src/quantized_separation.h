@@ -1,8 +1,9 @@
 // What the decoder outputs is the PRM quantized to its frame. Vertices that the remesher placed less than a
 // quantization step apart (sliced vertices next to lattice points, seam vertices) can round to one point, and a
-// triangle whose corners round onto one line loses its area: the stream would not hold the mesh that was remeshed.
-// This pass moves such vertices to a nearby free quantization point (two steps, three where two do not help), so that no triangle has zero area and no two
-// vertices share a position after quantization.
+// triangle whose corners round onto one line loses its area, or a sliver turns over: the stream would not hold the
+// mesh that was remeshed. This pass moves such vertices to a nearby free quantization point (two steps, three where
+// two do not help), or collapses an edge whose ends cannot be told apart, so that no triangle has zero area or turns
+// over and no two vertices share a position after quantization.
 #pragma once
 
 #include <cstddef>
@@ -15,10 +16,12 @@ namespace prm::remesh {
 
 struct QuantizedSeparationStats {
   size_t degenerate_faces = 0;     // faces of zero area after quantization, before the pass
+  size_t rounding_turned = 0;      // faces whose quantized normal points against their real one, before the pass
   size_t coincident_vertices = 0;  // vertices that shared their quantized position with another, before the pass
   size_t moved = 0;                // vertices moved (to a quantization point; lattice vertices along their height)
-  size_t unresolved = 0;           // faces still of zero area, or vertices still sharing a position, after it
-  size_t turned = 0;  // faces facing away from the input after the last, loosest pass (a known defect: issue 17)
+  size_t unresolved = 0;           // faces still of zero area or turned, or vertices still sharing a position, after it
+  size_t collapsed = 0;            // edges collapsed: their ends shared a point and neither could move
+  size_t turned = 0;               // faces facing away from the input after the last pass, which lets that go
 };
 
 // prm: a merged PRM with its labels and frame. A vertex that is not on a lattice moves to one of the quantization

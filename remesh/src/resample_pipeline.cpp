@@ -35,6 +35,17 @@ bool is_grid_triangle(int axis, const std::array<int64_t, 2>& a, const std::arra
   return axis_sign(axis) > 0 ? o == 1 : o == -1;
 }
 
+void label_face(PrmMesh& prm, size_t f) {
+  const Tri& t = prm.mesh.triangles[f];
+  prm.face_relief[f] = -1;
+  prm.face_regular[f] = 0;
+  const int32_t r = prm.vertex_relief[t[0]];
+  if (r < 0 || prm.vertex_relief[t[1]] != r || prm.vertex_relief[t[2]] != r) return;
+  prm.face_relief[f] = r;
+  auto ij = [&](uint32_t v) { return std::array<int64_t, 2>{prm.lattice_i[v], prm.lattice_j[v]}; };
+  prm.face_regular[f] = is_grid_triangle(prm.relief_axis[static_cast<size_t>(r)], ij(t[0]), ij(t[1]), ij(t[2]));
+}
+
 namespace {
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
@@ -158,17 +169,8 @@ PrmMesh resample_and_merge(const LayoutInput& layout, const ResampleOptions& opt
   for (size_t f = 0; f < nf; ++f) {
     const auto& t = merged.faces[f];
     prm.mesh.triangles[f] = {static_cast<uint32_t>(t[0]), static_cast<uint32_t>(t[1]), static_cast<uint32_t>(t[2])};
-    const int32_t r = prm.vertex_relief[static_cast<size_t>(t[0])];
-    if (r < 0 || prm.vertex_relief[static_cast<size_t>(t[1])] != r || prm.vertex_relief[static_cast<size_t>(t[2])] != r)
-      continue;
-    prm.face_relief[f] = r;
-    auto ij = [&](int32_t v) {
-      return std::array<int64_t, 2>{prm.lattice_i[static_cast<size_t>(v)], prm.lattice_j[static_cast<size_t>(v)]};
-    };
-    if (is_grid_triangle(prm.relief_axis[static_cast<size_t>(r)], ij(t[0]), ij(t[1]), ij(t[2]))) {
-      prm.face_regular[f] = 1;
-      ++st.regular_faces;
-    }
+    label_face(prm, f);
+    st.regular_faces += prm.face_regular[f];
   }
   st.vertices = nv;
   st.faces = nf;
@@ -181,10 +183,19 @@ PrmMesh resample_and_merge(const LayoutInput& layout, const ResampleOptions& opt
   // collapsed triangles.
   const QuantizedSeparationStats qs = separate_quantized_vertices(prm, &input, &tree);
   st.quantized_degenerate = qs.degenerate_faces;
+  st.quantized_rounding_turned = qs.rounding_turned;
   st.quantized_coincident = qs.coincident_vertices;
   st.quantized_moves = qs.moved;
   st.quantized_unresolved = qs.unresolved;
   st.quantized_turned = qs.turned;
+  st.quantized_collapses = qs.collapsed;
+  if (qs.collapsed > 0) {  // fewer vertices and faces, and the faces that took a collapsed vertex's place relabelled
+    st.vertices = prm.mesh.positions.size();
+    st.faces = prm.mesh.triangles.size();
+    st.regular_faces = static_cast<size_t>(std::count(prm.face_regular.begin(), prm.face_regular.end(), 1));
+    st.lattice_vertices = static_cast<size_t>(
+        std::count_if(prm.vertex_relief.begin(), prm.vertex_relief.end(), [](int32_t r) { return r >= 0; }));
+  }
   store_prm_labels(prm);
   return prm;
 }

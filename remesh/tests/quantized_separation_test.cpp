@@ -114,6 +114,42 @@ TEST(QuantizedSeparation, LatticeVerticesMoveAlongTheirHeightOnly) {
   EXPECT_TRUE(mq[2] != m_before[2] || aq[2] != a_before[2]);
 }
 
+// Both ends of the split edge on a lattice (they move along z only) and every point they could move to within three
+// steps taken (by vertices of no face): the edge collapses, its two zero-area faces go, and what is left is the
+// closed sphere, every face still facing out.
+TEST(QuantizedSeparation, InseparableNeighboursCollapse) {
+  uint32_t a = 0, mid = 0;
+  PrmMesh prm = split_sphere(&a, &mid);
+  Mesh& m = prm.mesh;
+  const size_t faces_before = m.triangles.size(), vertices_before = m.positions.size();
+  for (int dz : {-3, -2, -1, 1, 2, 3}) m.positions.push_back(m.positions[a] + Vec3{0, 0, static_cast<double>(dz)});
+  prm.vertex_relief.assign(m.positions.size(), -1);
+  prm.vertex_relief[a] = prm.vertex_relief[mid] = 0;
+  prm.lattice_i.assign(m.positions.size(), 0);
+  prm.lattice_j.assign(m.positions.size(), 0);
+  prm.face_relief.assign(m.triangles.size(), -1);
+  prm.face_regular.assign(m.triangles.size(), 0);
+  const QuantizedSeparationStats st = separate_quantized_vertices(prm);
+  EXPECT_EQ(st.collapsed, 1u);
+  EXPECT_EQ(st.unresolved, 0u);
+  EXPECT_EQ(m.positions.size(), vertices_before + 6 - 1);
+  EXPECT_EQ(m.triangles.size(), faces_before - 2);
+  EXPECT_EQ(prm.vertex_relief.size(), m.positions.size());
+  EXPECT_EQ(prm.face_relief.size(), m.triangles.size());
+  EXPECT_EQ(zero_area_faces(prm), 0u);
+  EXPECT_EQ(shared_positions(prm), 0u);
+  std::map<std::pair<uint32_t, uint32_t>, int> edges;  // each directed edge once, and its reverse once
+  for (const Tri& t : m.triangles) {
+    for (int k = 0; k < 3; ++k) ++edges[{t[static_cast<size_t>(k)], t[static_cast<size_t>((k + 1) % 3)]}];
+    const Vec3 centroid = (m.positions[t[0]] + m.positions[t[1]] + m.positions[t[2]]) * (1.0 / 3.0);
+    EXPECT_GT(dot(triangle_normal_area2(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]), centroid), 0);
+  }
+  for (const auto& [e, n] : edges) {
+    EXPECT_EQ(n, 1);
+    EXPECT_EQ(edges.count({e.second, e.first}), 1u);
+  }
+}
+
 TEST(QuantizedSeparation, NothingToDoChangesNothing) {
   PrmMesh prm;
   prm.mesh = test::icosphere(2, 40.0);

@@ -46,8 +46,10 @@ struct ResampleStats {
   size_t heights_moved = 0, height_moves_reverted = 0;  // least-squares heights (height_fitting.h)
   // Quantization (quantized_separation.h): faces that lost their area and vertices that shared a position when
   // rounded to the frame, the vertices moved so that none does, and what is left (faces and vertices).
-  size_t quantized_degenerate = 0, quantized_coincident = 0, quantized_moves = 0, quantized_unresolved = 0,
-         quantized_turned = 0;  // faces the last separation pass left facing away from the input
+  size_t quantized_degenerate = 0, quantized_rounding_turned = 0, quantized_coincident = 0, quantized_moves = 0,
+         quantized_unresolved = 0,
+         quantized_turned = 0,      // faces the last separation pass left facing away from the input
+         quantized_collapses = 0;   // edges whose ends could only share a point, collapsed
   double seconds_slice = 0, seconds_merge = 0;
 };
 
@@ -77,5 +79,7 @@ PrmMesh load_prm_labels(Mesh mesh);  // throws prm::InputError when the labels a
 // Is triangle (a, b, c), given by lattice coordinates, a grid triangle facing `axis` in this vertex order?
 bool is_grid_triangle(int axis, const std::array<int64_t, 2>& a, const std::array<int64_t, 2>& b,
                       const std::array<int64_t, 2>& c);
+// Sets face_relief[f] and face_regular[f] from the labels of the face's corners.
+void label_face(PrmMesh& prm, size_t f);
 
 }  // namespace prm::remesh

@@ -1,0 +1,26 @@
+// What a decoded stream is checked for (issue 17): no triangle of zero area, no two vertices at one position, and
+// every triangle facing the side of the surface it stands for (bench/zero_area_sweep.sh, the pack tests).
+#pragma once
+
+#include <cstddef>
+
+#include "prm/codec.h"
+#include "prm/mesh.h"
+
+namespace prm::pipeline {
+
+struct StreamCheck {
+  size_t zero_area = 0;   // triangles whose quantized corners are collinear or coincide (count_zero_area_triangles)
+  size_t coincident = 0;  // vertices whose quantized position another vertex has too
+  size_t turned = 0;      // triangles whose normal is 90 degrees or more from the normal of the reference's triangle
+                          // nearest their centroid (the remesher's orientation test); 0 without a reference
+};
+
+// reference: the surface the stream was made from (the repaired input for `pack`), or null.
+StreamCheck check_decoded(const codec::DecodedMesh& decoded, const Mesh* reference);
+
+// What `pack` remeshes: the mesh itself when the remesher takes it as it is, otherwise its repair (prm::InputError
+// when it cannot be repaired).
+Mesh pack_reference(const Mesh& input);
+
+}  // namespace prm::pipeline
