@@ -131,6 +131,8 @@ void add_pack_command(CLI::App& root) {
     const size_t geometry = rep.total_bytes - rep.header_bytes - rep.framing_bytes - rep.connectivity_bytes -
                             rep.irregular_bytes;
     if (opt->json) {
+      nlohmann::json search = nlohmann::json::array();  // the chosen step's grid search
+      for (const auto& st : r.remesh.search) search.push_back({{"grid_steps", st.grid}, {"rms", st.error.rms}});
       nlohmann::json tried = nlohmann::json::array();
       for (const auto& t : r.tried) tried.push_back({{"bits", t.bits}, {"step_scale", t.step_scale}, {"bytes", t.bytes}});
       nlohmann::json j = {
@@ -151,6 +153,7 @@ void add_pack_command(CLI::App& root) {
           {"tried", tried},
           {"effort", opt->effort},
           {"remesh_rounds", r.remesh_rounds},
+          {"search", search},
           {"regular_share", s.faces ? static_cast<double>(s.regular_faces) / s.faces : 0.0},
           {"regular_patches", rep.regular_patches},
           {"height_lambda", r.codec_options.height_lambda},
