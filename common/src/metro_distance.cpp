@@ -91,7 +91,9 @@ SamplingOptions sampling_options(const MetroOptions& o, size_t count) {
 }
 
 size_t sample_count(const MetroOptions& o, const Mesh& a, const Mesh& b) {
-  return o.samples ? o.samples : 10 * std::max(a.triangles.size(), b.triangles.size());
+  return o.samples ? o.samples
+                   : static_cast<size_t>(o.samples_per_face *
+                                         static_cast<double>(std::max(a.triangles.size(), b.triangles.size())));
 }
 
 DistanceReport combine(const OneSidedDistance& ab, const OneSidedDistance& ba, double diagonal) {

@@ -1,7 +1,13 @@
 #include "prm/pipeline/pack.h"
 
 #include <chrono>
+#include <cmath>
+#include <stdexcept>
+#include <algorithm>
 #include <iterator>
+#include <memory>
+#include <string>
+#include <vector>
 
 #include "prm/error.h"
 #include "prm/mesh_validate.h"
@@ -17,12 +23,31 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// One bit depth and step scale: repair (done by the caller), remesh, encode.
-PackResult pack_at(const Mesh& source, const MetroReference& reference, const PackOptions& options, int bits,
-                   double step_scale, double initial_grid) {
+// Sparse estimates in [kSparseBand[0], kSparseBand[1]] x the target are measured again at full density.
+constexpr double kSparseBand[2] = {0.97, 1.08};
+
+// What one search shares across its attempts: the repaired input, its relief layout, and the Metro references of the
+// search (plan.search_samples_per_face) and of the report (Metro's ten per face, or PackOptions::metro_samples).
+struct SearchContext {
+  const Mesh& source;
+  const remesh::ReliefLayout& layout;
+  const MetroReference& search;
+  const MetroReference& full;
+  EffortPlan plan;
+};
+
+// One bit depth and step scale: repair (done by the caller), remesh, encode. `measured`: false when the chosen stream,
+// measured at full density, misses what the search's sparser samples promised (the caller repeats at full density).
+PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bits, double step_scale,
+                   double initial_grid, bool* measured = nullptr) {
+  const Mesh& source = ctx.source;
+  const MetroReference& reference = ctx.search;
   PackResult out;
   auto t0 = std::chrono::steady_clock::now();
   remesh::RemeshOptions ro;
+  ro.layout = &ctx.layout;
+  ro.grid_tolerance = ctx.plan.grid_tolerance;
+  ro.accept_error = ctx.plan.accept_error;
   ro.bits = bits;
   ro.step_scale = step_scale;
   ro.reliefs.tau = options.tau;
@@ -46,10 +71,24 @@ PackResult pack_at(const Mesh& source, const MetroReference& reference, const Pa
   po.height_sweeps = options.height_sweeps;
   po.seam_context = options.max_minor >= codec::kFormatMinorSeam ? -1 : 0;
   po.patch_contexts = options.max_minor >= codec::kFormatMinorPatchContexts;
+  // The error of a decoded candidate: the search's samples decide unless they fall within kSparseBand of the target,
+  // where the full density decides (the sparser samples weigh the vertices more: +0.5% at 4 per face, +4% at 2 on
+  // the horse), so that every decision is the one the full density would make.
+  auto measure_with = [](const MetroReference& r, const Mesh& m) {
+    const DistanceReport d = r.compare(m);
+    return remesh::ErrorEstimate{d.rel(d.rms), d.rel(d.max)};
+  };
+  auto measure = [&](const Mesh& m) {
+    const remesh::ErrorEstimate e = measure_with(reference, m);
+    if (&reference == &ctx.full || e.rms < kSparseBand[0] * ro.target_error || e.rms > kSparseBand[1] * ro.target_error)
+      return e;
+    return measure_with(ctx.full, m);
+  };
   // The stream of a candidate with options o, and the error of its decoded mesh.
   // zero_area: the decoded mesh's triangles of zero area (the chosen heights can put a corner on a line).
   auto encode_and_measure = [&](const remesh::PrmMesh& prm, const codec::PrmOptions& o, codec::EncodeReport* report,
-                                std::vector<uint8_t>* stream, size_t* zero_area = nullptr) {
+                                std::vector<uint8_t>* stream, size_t* zero_area = nullptr,
+                                const MetroReference* against = nullptr) {
     auto encoded = encode_prm_mesh(prm, report, o);
     if (!encoded.ok())
       throw InputError("the piecewise regular mesh could not be encoded (a remesher or codec bug): " +
@@ -57,9 +96,9 @@ PackResult pack_at(const Mesh& source, const MetroReference& reference, const Pa
     auto decoded = codec::decode(encoded.value.data(), encoded.value.size());
     if (!decoded.ok()) throw InputError("the encoder's stream does not decode (a codec bug): " + decoded.status.message);
     if (zero_area) *zero_area = count_zero_area_triangles(decoded.value);
-    const DistanceReport d = reference.compare(to_mesh(decoded.value));
+    const Mesh mesh = to_mesh(decoded.value);
     if (stream) *stream = std::move(encoded.value);
-    return remesh::ErrorEstimate{d.rel(d.rms), d.rel(d.max)};
+    return against ? measure_with(*against, mesh) : measure(mesh);
   };
   auto error = [&](const remesh::PrmMesh& prm) {
     if (po.height_lambda > 0) return encode_and_measure(prm, po, nullptr, nullptr);
@@ -71,8 +110,7 @@ PackResult pack_at(const Mesh& source, const MetroReference& reference, const Pa
       for (int a = 0; a < 3; ++a)
         q.positions[v][static_cast<size_t>(a)] =
             frame.to_real(frame.quantize(candidate.positions[v][static_cast<size_t>(a)], a), a);
-    const DistanceReport d = reference.compare(q);
-    return remesh::ErrorEstimate{d.rel(d.rms), d.rel(d.max)};
+    return measure(q);
   };
   out.remesh = remesh::remesh(source, ro, error);
   out.seconds_remesh = seconds_since(t0);
@@ -90,9 +128,9 @@ PackResult pack_at(const Mesh& source, const MetroReference& reference, const Pa
   // The error left below the target buys smaller residuals: the largest lambda that still meets it.
   if (options.optimize_heights && options.height_lambda <= 0 && options.target_error > 0) {
     const auto t1 = std::chrono::steady_clock::now();
-    // The error grows with lambda: bisection for the last one that meets the target.
+    // The error grows with lambda: bisection for the last one that meets the target (in at most plan.lambda_rounds).
     int lo = -1, hi = static_cast<int>(std::size(kHeightLambdas));  // lo meets (-1: rounding), hi does not
-    while (hi - lo > 1) {
+    for (int round = 0; hi - lo > 1 && round < ctx.plan.lambda_rounds; ++round) {
       const int mid = (lo + hi) / 2;
       codec::PrmOptions o = po;
       o.height_tolerance = kHeightTolerance;
@@ -140,6 +178,37 @@ PackResult pack_at(const Mesh& source, const MetroReference& reference, const Pa
     out.codec_options = rounded;
     zero_area = zero_area_of(out.stream);
   }
+  // The search measured with fewer samples than the report: the chosen stream at full density. Where that misses
+  // the target, smaller lambdas (then rounding) are tried at full density; `measured` false if none meets it.
+  if (&ctx.search != &ctx.full && options.target_error > 0 && zero_area == 0) {
+    const double target = kQuantizationMargin * options.target_error;
+    auto full_error = [&](const codec::PrmOptions& o, std::vector<uint8_t>* stream, codec::EncodeReport* report) {
+      size_t za = 0;
+      const remesh::ErrorEstimate e = encode_and_measure(out.remesh.prm, o, report, stream, &za, &ctx.full);
+      return za > 0 ? remesh::ErrorEstimate{HUGE_VAL, HUGE_VAL} : e;
+    };
+    const auto decoded = codec::decode(out.stream.data(), out.stream.size());
+    if (!decoded.ok()) throw InputError("the encoder's stream does not decode (a codec bug): " + decoded.status.message);
+    const DistanceReport d = ctx.full.compare(to_mesh(decoded.value));
+    out.remesh.error = remesh::ErrorEstimate{d.rel(d.rms), d.rel(d.max)};
+    bool met = out.remesh.error.rms <= target;
+    int k = 0;  // the chosen lambda's index
+    while (k < static_cast<int>(std::size(kHeightLambdas)) && kHeightLambdas[k] < out.codec_options.height_lambda) ++k;
+    for (int j = k - 1; !met && out.codec_options.height_lambda > 0 && j >= -1; --j) {
+      codec::PrmOptions o = out.codec_options;
+      o.height_lambda = j >= 0 ? kHeightLambdas[j] : 0;  // -1: rounded heights
+      std::vector<uint8_t> stream;
+      codec::EncodeReport report;
+      const remesh::ErrorEstimate e = full_error(o, &stream, &report);
+      if (e.rms > target) continue;
+      met = true;
+      out.stream = std::move(stream);
+      out.report = report;
+      out.remesh.error = e;
+      out.codec_options = o;
+    }
+    if (measured) *measured = met;
+  }
   if (zero_area > 0)
     throw remesh::TargetNotReached(std::to_string(zero_area) + " triangle(s) of the piecewise regular mesh have zero "
                                    "area once quantized to " + std::to_string(bits) + " bits (step scale " +
@@ -158,7 +227,37 @@ PackResult pack_at(const Mesh& source, const MetroReference& reference, const Pa
   return out;
 }
 
+// The step of ladder position p (eighths of an octave below the extent): bits ceil(p / 8), scale 2^(j/8).
+struct Step {
+  int bits;
+  double scale;
+};
+Step step_at(int p) {
+  const int bits = (p + 7) / 8;
+  return {bits, std::exp2(static_cast<double>(8 * bits - p) / 8.0)};
+}
+
 }  // namespace
+
+EffortPlan effort_plan(int effort) {
+  if (effort < kMinEffort || effort > kMaxEffort)
+    throw std::invalid_argument("effort " + std::to_string(effort) + " is outside " + std::to_string(kMinEffort) +
+                                ".." + std::to_string(kMaxEffort));
+  EffortPlan p;
+  switch (effort) {
+    case 0: p.steps = 1; p.search_samples_per_face = 2; p.lambda_rounds = 2; p.grid_tolerance = 0.15; p.accept_error = 0.8; break;
+    case 1: p.steps = 1; p.search_samples_per_face = 2; p.lambda_rounds = 3; p.grid_tolerance = 0.1; p.accept_error = 0.85; break;
+    case 2: p.steps = 1; p.search_samples_per_face = 4; p.lambda_rounds = 4; p.grid_tolerance = 0.06; p.accept_error = 0.9; break;
+    case 3: p.steps = 1; p.search_samples_per_face = 4; p.accept_error = 0.95; break;
+    case 4: p.steps = 1; p.search_samples_per_face = 4; break;
+    case 5: p.steps = 2; p.search_samples_per_face = 4; break;
+    case 6: p.steps = 3; p.search_samples_per_face = 4; break;
+    case 7: p.steps = 5; p.search_samples_per_face = 4; break;
+    case 8: p.exhaustive = true; p.search_samples_per_face = 4; break;
+    default: p.exhaustive = true; break;
+  }
+  return p;
+}
 
 PackResult pack(const Mesh& input, const PackOptions& options) {
   auto t0 = std::chrono::steady_clock::now();
@@ -171,26 +270,50 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
   if (repaired) closed = repair_mesh(input, &repair);  // throws InputError when it cannot be made a closed manifold
   const Mesh& source = repaired ? closed : input;
   const double seconds_repair = seconds_since(t0);
+  const EffortPlan plan = effort_plan(options.effort);
   MetroOptions mo;
   mo.samples = options.metro_samples;  // 0: Metro's ten per face, as `prm compare` measures
   const MetroReference reference(source, mo);
+  // The search's own, sparser samples (only where they are fewer than the report's).
+  MetroOptions so = mo;
+  so.samples_per_face = plan.search_samples_per_face;
+  const bool sparse = options.metro_samples == 0 && options.target_error > 0 && plan.search_samples_per_face < 10;
+  std::unique_ptr<MetroReference> sparse_reference;
+  if (sparse) sparse_reference = std::make_unique<MetroReference>(source, so);
+  remesh::ReliefOptions relief_options;
+  relief_options.tau = options.tau;
+  relief_options.parallel = options.parallel;
+  const remesh::ReliefLayout layout = remesh::build_reliefs(source, relief_options);
+  const SearchContext ctx{source, layout, sparse ? *sparse_reference : reference, reference, plan};
+  const SearchContext full_ctx{source, layout, reference, reference, plan};
+  size_t rounds = 0;
+  // One bit depth and step scale; repeated with full-density Metro when the sparse samples promised too much.
+  auto pack_one = [&](int bits, double scale, double initial_grid) {
+    bool measured = true;
+    PackResult r = pack_at(ctx, options, bits, scale, initial_grid, &measured);
+    rounds += r.remesh.search.size();
+    if (!measured) {
+      r = pack_at(full_ctx, options, bits, scale, initial_grid);
+      rounds += r.remesh.search.size();
+    }
+    return r;
+  };
 
   PackResult out;
   const double fixed_scale = options.step_scale > 0 ? options.step_scale : 1.0;
   if (options.bits > 0 || options.target_error <= 0) {
-    out = pack_at(source, reference, options, options.bits > 0 ? options.bits : 12, fixed_scale, 0);
+    out = pack_one(options.bits > 0 ? options.bits : 12, fixed_scale, 0);
     out.tried.push_back({out.bits, out.step_scale, out.stream.size()});
   } else {
     // The bit depth is part of the search: fewer bits make every height cheaper and add quantization error, which a
-    // finer grid must buy back. From 12 bits down while the stream shrinks (up from 12 while the target is out of
-    // reach), each grid search starting from the previous grid size.
+    // finer grid must buy back. Each grid search starts from the previous grid size.
     double grid = 0, seconds = 0;
     bool have = false;
     enum class Outcome { unreachable, smaller, larger };
     auto attempt = [&](int bits, double scale) {
       PackResult r;
       try {
-        r = pack_at(source, reference, options, bits, scale, grid);
+        r = pack_one(bits, scale, grid);
       } catch (const remesh::VertexBudgetExceeded&) {
         if (!have) throw;  // more bits would not make the grid it needs coarser
         return Outcome::unreachable;
@@ -207,19 +330,57 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
       have = true;
       return Outcome::smaller;
     };
-    if (attempt(12, fixed_scale) == Outcome::unreachable) {
-      for (int bits = 13; bits <= kMaxPackBits && !have; ++bits) attempt(bits, fixed_scale);
-    } else {
-      for (int bits = 11; bits >= kMinPackBits && attempt(bits, fixed_scale) == Outcome::smaller; --bits) {
+    if (plan.exhaustive) {
+      // From 12 bits down while the stream shrinks (up from 12 while the target is out of reach).
+      if (attempt(12, fixed_scale) == Outcome::unreachable) {
+        for (int bits = 13; bits <= kMaxPackBits && !have; ++bits) attempt(bits, fixed_scale);
+      } else {
+        for (int bits = 11; bits >= kMinPackBits && attempt(bits, fixed_scale) == Outcome::smaller; --bits) {
+        }
       }
-    }
-    // Between the bit depths: steps coarser than 2^-b, b the best depth, each grid search starting from b's grid.
-    if (have && options.step_scale <= 0) {
-      const int b = out.bits;
-      const double best_grid = static_cast<double>(out.remesh.prm.lattice.A) * out.remesh.prm.frame.step;
-      for (double s : kStepScales) {
-        grid = best_grid;
-        attempt(b, s);
+      // Between the bit depths: steps coarser than 2^-b, b the best depth, each grid search starting from b's grid.
+      if (have && options.step_scale <= 0) {
+        const int b = out.bits;
+        const double best_grid = static_cast<double>(out.remesh.prm.lattice.A) * out.remesh.prm.frame.step;
+        for (double s : kStepScales) {
+          grid = best_grid;
+          attempt(b, s);
+        }
+      }
+    } else {
+      // The step predicted from the target (kStepPerTargetError), then its neighbours an eighth of an octave apart,
+      // nearest the best so far first, each grid search starting from the best grid.
+      const remesh::QuantFrame unit = remesh::frame_of_mesh(source, kMinPackBits, 1.0);
+      const double extent = unit.step * static_cast<double>((1 << kMinPackBits) - 1);
+      const double wanted = kStepPerTargetError * options.target_error * reference.diagonal();
+      const int lowest = 8 * kMinPackBits - 7, highest = 8 * kMaxPackBits;
+      auto clamp_p = [&](int p) { return std::clamp(p, lowest, highest); };
+      int best_p = clamp_p(static_cast<int>(std::lround(-8.0 * std::log2(wanted / extent))));
+      std::vector<int> tried_p;
+      auto untried = [&](int p) {
+        return p >= lowest && p <= highest && std::find(tried_p.begin(), tried_p.end(), p) == tried_p.end();
+      };
+      int p = best_p;
+      grid = kGridPerTargetError * options.target_error * reference.diagonal();
+      for (int n = 0; n < plan.steps && p != INT32_MIN; ++n) {
+        tried_p.push_back(p);
+        const Step st = step_at(p);
+        const Outcome o = attempt(st.bits, st.scale);
+        if (o == Outcome::smaller) best_p = p;
+        if (o == Outcome::unreachable && !have) {
+          // The target needs a finer step: down by an octave at a time.
+          p = untried(p + 8) ? p + 8 : INT32_MIN;
+          best_p = p;
+          --n;
+          continue;
+        }
+        if (have) grid = static_cast<double>(out.remesh.prm.lattice.A) * out.remesh.prm.frame.step;
+        // Next: the untried neighbour nearest the best, coarser first (fewer bits per height).
+        p = INT32_MIN;
+        for (int d = 1; d <= 8 && p == INT32_MIN; ++d) {
+          if (untried(best_p - d)) p = best_p - d;
+          else if (untried(best_p + d)) p = best_p + d;
+        }
       }
     }
     if (!have)
@@ -227,6 +388,7 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
                                      " at 12 to " + std::to_string(kMaxPackBits) + " bits");
     out.seconds_remesh = seconds - out.seconds_encode;  // the whole search
   }
+  out.remesh_rounds = rounds;
   out.seconds_repair = seconds_repair;
   out.repaired = repaired;
   out.repair = repair;

@@ -170,12 +170,14 @@ TEST(Pack, PatchContextsShrinkARealPrm) {
   EXPECT_LT(bytes[1], bytes[0]);
 }
 
-// With a target error and no bit depth, the search tries the bit depths and then the step scales of kStepScales at
-// the best one, and keeps the smallest stream of all it tried, whose decoded mesh meets the target.
+// With a target error and no bit depth, the exhaustive search (kMaxEffort) tries the bit depths and then the step
+// scales of kStepScales at the best one, and keeps the smallest stream of all it tried, whose decoded mesh meets the
+// target.
 TEST(Pack, GridFromTargetError) {
   const prm::Mesh input = prm::read_mesh(std::string(PRM_SHARED_MESHES) + "/spot.obj");
   PackOptions o;
   o.target_error = 5e-4;
+  o.effort = prm::pipeline::kMaxEffort;
   const prm::pipeline::PackResult r = prm::pipeline::pack(input, o);
   EXPECT_LE(r.remesh.error.rms, prm::pipeline::kQuantizationMargin * 5e-4);
   expect_exact_round_trip(r);

@@ -56,7 +56,9 @@ RemeshResult remesh(const Mesh& input, const RemeshOptions& options, const Error
   check_remesh_range(input);
 
   RemeshResult result;
-  const ReliefLayout layout = build_reliefs(input, options.reliefs);
+  ReliefLayout built;
+  if (!options.layout) built = build_reliefs(input, options.reliefs);
+  const ReliefLayout& layout = options.layout ? *options.layout : built;
   result.reliefs = layout.reliefs.size();
   result.relief_boundary_length = layout.boundary_length;
   result.seconds_reliefs = seconds_since(t0);
@@ -157,7 +159,11 @@ RemeshResult remesh(const Mesh& input, const RemeshOptions& options, const Error
       result.error = step.error;
     }
     if (e > target) smallest_failing = std::min(smallest_failing, grid);
-    if (best_grid > 0 && smallest_failing - best_grid <= std::max<int64_t>(1, best_grid / 50)) break;
+    if (best_grid > 0 &&
+        smallest_failing - best_grid <=
+            std::max<int64_t>(1, static_cast<int64_t>(options.grid_tolerance * static_cast<double>(best_grid))))
+      break;
+    if (e <= target && e >= options.accept_error * target) break;
     double p = 2.0;
     if (result.search.size() >= 2) {
       const SearchStep& a = result.search[result.search.size() - 2];

@@ -21,7 +21,7 @@ void add_pack_command(CLI::App& root) {
   struct Options {
     std::string input, output, keep_prm;
     double target = 0, grid = 0, grid_fraction = 0, tau = 0.2, lambda = 0, step_scale = 0;
-    int bits = 0, sweeps = 4;
+    int bits = 0, sweeps = 4, effort = pipeline::kDefaultEffort;
     std::string max_version = "1.4";
     size_t samples = 0;
     bool json = false, no_fit = false, round_heights = false, fallback = false;
@@ -51,6 +51,11 @@ void add_pack_command(CLI::App& root) {
                   "--target-error and no --bits, 1 and then 2^(1/8), 2^(1/4), 2^(3/8) at the best bit depth (three "
                   "more grid searches; --step-scale 1 skips them); otherwise 1")
       ->check(CLI::Range(1.0, 1.999999));
+  cmd->add_option("--effort", opt->effort,
+                  "With --target-error: how hard to look for the smallest stream, 0 (fastest) to 9 (the exhaustive "
+                  "search over bit depths and step scales; bench/README.md 'pack effort' measures time against bytes). "
+                  "Default " + std::to_string(pipeline::kDefaultEffort))
+      ->check(CLI::Range(pipeline::kMinEffort, pipeline::kMaxEffort));
   cmd->add_option("--samples", opt->samples, "Metro samples per surface for the target-error search (default 0: Metro's ten per face)");
   cmd->add_option("--keep-prm", opt->keep_prm, "Also write the piecewise regular mesh (PLY with lattice labels)");
   add_remesher_options(cmd, opt->error_flip_weight, opt->no_fit);
@@ -93,6 +98,7 @@ void add_pack_command(CLI::App& root) {
     po.optimize_heights = !opt->round_heights;
     po.height_sweeps = opt->sweeps;
     po.max_minor = opt->max_version[2] - '0';
+    po.effort = opt->effort;
     if (is_gltf_file_path(opt->output)) return run_gltf_pack(opt->input, opt->output, po, opt->fallback, opt->json);
     note_gltf_to_prm(opt->input);
     ReadReport read;
@@ -125,6 +131,8 @@ void add_pack_command(CLI::App& root) {
     const size_t geometry = rep.total_bytes - rep.header_bytes - rep.framing_bytes - rep.connectivity_bytes -
                             rep.irregular_bytes;
     if (opt->json) {
+      nlohmann::json search = nlohmann::json::array();  // the chosen step's grid search
+      for (const auto& st : r.remesh.search) search.push_back({{"grid_steps", st.grid}, {"rms", st.error.rms}});
       nlohmann::json tried = nlohmann::json::array();
       for (const auto& t : r.tried) tried.push_back({{"bits", t.bits}, {"step_scale", t.step_scale}, {"bytes", t.bytes}});
       nlohmann::json j = {
@@ -143,6 +151,9 @@ void add_pack_command(CLI::App& root) {
           {"step_scale", r.step_scale},
           {"step", r.remesh.prm.frame.step},
           {"tried", tried},
+          {"effort", opt->effort},
+          {"remesh_rounds", r.remesh_rounds},
+          {"search", search},
           {"regular_share", s.faces ? static_cast<double>(s.regular_faces) / s.faces : 0.0},
           {"regular_patches", rep.regular_patches},
           {"height_lambda", r.codec_options.height_lambda},
@@ -185,7 +196,7 @@ void add_pack_command(CLI::App& root) {
                   "(%.2f bpv), header %zu B\n",
                   rep.connectivity_bytes, 8.0 * rep.connectivity_bytes / n_r, rep.irregular_bytes,
                   8.0 * rep.irregular_bytes / n_r, geometry, 8.0 * geometry / n_r, rep.header_bytes + rep.framing_bytes);
-      std::printf("  time: repair %.2f s, remesh %.2f s, encode %.3f s\n", r.seconds_repair, r.seconds_remesh,
+      std::printf("  time: repair %.2f s, remesh %.2f s (%zu grids, effort %d), encode %.3f s\n", r.seconds_repair, r.seconds_remesh, r.remesh_rounds, opt->effort,
                   r.seconds_encode);
     }
   });

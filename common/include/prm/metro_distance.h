@@ -25,9 +25,12 @@
 namespace prm {
 
 struct MetroOptions {
-  // Samples per surface, split between vertices, edges and faces as `budget` says. 0: ten per face of the mesh with
-  // more faces (Metro's default). The distances' cost is linear in this number.
+  // Samples per surface, split between vertices, edges and faces as `budget` says. 0: samples_per_face per face of
+  // the mesh with more faces. The distances' cost is linear in this number.
   size_t samples = 0;
+  // With samples = 0: this many per face (Metro's default, 10). Fewer make a cheaper estimate in which the vertex
+  // samples weigh more (`prm pack` searches with fewer at its lower efforts and reports with 10).
+  double samples_per_face = 10;
   SampleBudget budget = SampleBudget::Metro;
   uint64_t seed = 1;  // random positions of the face samples (both surfaces use the same seed)
   bool sample_vertices = true;

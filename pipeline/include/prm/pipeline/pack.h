@@ -19,6 +19,24 @@ constexpr double kQuantizationMargin = 0.99;
 constexpr int kMinPackBits = 8;
 constexpr int kMaxPackBits = 16;
 
+// PackOptions::effort with a target error, bits = 0 and step_scale = 0: how hard the search looks for the smallest
+// stream (in the manner of Draco's -cl). Lower efforts try fewer steps, measure the error with fewer Metro samples
+// while searching (never in the final report), and stop the grid and lambda searches sooner; kMaxEffort is the
+// exhaustive search (every bit depth from 12 while the stream shrinks, then kStepScales, full-density Metro
+// throughout). Measured time against bytes: bench/README.md "pack effort".
+constexpr int kMinEffort = 0;
+constexpr int kMaxEffort = 9;
+constexpr int kDefaultEffort = 3;
+
+// The quantization step a search below kMaxEffort - 1 tries first: this many times target_error x the bounding-box
+// diagonal, rounded to an eighth of an octave (bits and step scale 2^(j/8)), then its neighbours. The exhaustive
+// search's steps at the paper's errors were 1.93 (horse, 2e-4), 3.09 (venus, 1.3e-4), 2.58 (feline, 2.6e-4) and
+// 3.04 (bunny, 2e-4) times; 2.6 is about their geometric mean.
+constexpr double kStepPerTargetError = 2.6;
+// ... and its first grid size this many times target_error x the diagonal (the same searches' grids: 37, 40, 23
+// and 33 times).
+constexpr double kGridPerTargetError = 32;
+
 struct PackOptions {
   // The grid size: exactly one of these three.
   double target_error = 0;   // largest symmetric RMS distance of the decoded mesh to the input, fraction of the
@@ -44,7 +62,19 @@ struct PackOptions {
   int height_sweeps = 4;  // codec::PrmOptions::height_sweeps: the choice refined over all heights (0: one by one)
   // The newest format 1.N the stream may need (encode_any_mesh): 4, or 3 (no patch contexts), or 2 (no seam context).
   int max_minor = codec::kFormatMinorPatchContexts;
+  int effort = kDefaultEffort;  // kMinEffort..kMaxEffort (see above)
 };
+
+// What one effort level does (effort_plan()).
+struct EffortPlan {
+  bool exhaustive = false;        // the bit-depth scan and kStepScales (otherwise: steps around the predicted one)
+  int steps = 1;                  // without `exhaustive`: how many steps (eighths of an octave) to try
+  double search_samples_per_face = 10;  // Metro density while searching (MetroOptions::samples_per_face)
+  int lambda_rounds = 5;          // bisection rounds over kHeightLambdas (5 finds the last one that meets)
+  double grid_tolerance = 0.02;   // remesh::RemeshOptions::grid_tolerance
+  double accept_error = 1.0;      // remesh::RemeshOptions::accept_error
+};
+EffortPlan effort_plan(int effort);  // throws std::invalid_argument outside kMinEffort..kMaxEffort
 constexpr double kHeightTolerance = 1.5;
 // The step scales the search tries at the best bit depth: eighths of an octave towards the next coarser depth. The
 // grid size is a whole number of steps, so these also move it in finer increments than the bit depths alone.
@@ -73,6 +103,7 @@ struct PackResult {
     size_t bytes = 0;
   };
   std::vector<Trial> tried;     // every (bit depth, step scale) the search tried and its stream's size
+  size_t remesh_rounds = 0;     // grids remeshed by the whole search
   Mesh repaired_input;          // what was remeshed when `repaired` (the input itself otherwise, not copied)
   double seconds_repair = 0, seconds_remesh = 0, seconds_encode = 0;
 };

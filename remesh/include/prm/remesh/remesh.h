@@ -22,6 +22,15 @@ struct RemeshOptions {
   double target_error = 0;       // largest symmetric RMS distance, as a fraction of the diagonal: search g
   double initial_grid_size = 0;  // with target_error: where the search starts (model units; 0: 1.5 mean edges)
   int max_search_steps = 8;
+  // With target_error: the search stops once the finest failing grid is at most this fraction (or one step) above
+  // the coarsest that meets the target.
+  double grid_tolerance = 0.02;
+  // With target_error: the search also stops at the first grid whose error is at least this fraction of the target
+  // (1: never; a lower value trades a finer grid, more bytes, for fewer remesh rounds).
+  double accept_error = 1.0;
+  // The relief layout of the input (build_reliefs(input, reliefs)), when the caller built it already: a search over
+  // several bit depths or step scales builds it once. Null: built here.
+  const ReliefLayout* layout = nullptr;
   // The most vertices a grid may give (estimated from the input's area and the lattice's cell): 0 for
   // max(kMinVertexBudget, kVertexBudgetPerInputVertex x the input's vertices). A fixed grid finer than that is
   // refused, and the search does not go finer (VertexBudgetExceeded when the target needs it).
