@@ -9,6 +9,7 @@
 #include <string>
 
 #include "commands.h"
+#include "json_report.h"
 #include "prm/mesh_io.h"
 #include "prm/metro_distance.h"
 #include "prm/progress.h"
@@ -57,7 +58,11 @@ void run(const CompareOptions& o) {
   const char* budget = o.budget == SampleBudget::Metro ? "metro" : "meshlab";
 
   if (o.json) {
-    const nlohmann::json j = {
+    JsonReport report("compare");
+    report.distance(r.rel(r.rms), r.rel(r.max), r.diagonal).seconds(seconds);
+    report["distance"]["mean"] = r.mean;
+    report["distance"]["mean_rel"] = r.rel(r.mean);
+    report.json().update(nlohmann::json{
         {"a", {{"file", o.a}, {"vertices", a.num_vertices()}, {"faces", a.num_faces()}}},
         {"b", {{"file", o.b}, {"vertices", b.num_vertices()}, {"faces", b.num_faces()}}},
         {"sampling", {{"budget", budget}, {"samples", o.samples}, {"seed", o.seed}}},
@@ -70,9 +75,8 @@ void run(const CompareOptions& o) {
           {"max", r.max},
           {"mean_rel", r.rel(r.mean)},
           {"rms_rel", r.rel(r.rms)},
-          {"max_rel", r.rel(r.max)}}},
-        {"seconds", seconds}};
-    std::printf("%s\n", j.dump(2).c_str());
+          {"max_rel", r.rel(r.max)}}}});
+    report.print();
     return;
   }
   std::printf("A: %s (%zu vertices, %zu faces, area %.6g)\n", o.a.c_str(), a.num_vertices(), a.num_faces(),
@@ -111,7 +115,7 @@ void add_compare_command(CLI::App& root) {
   // (Missing files are reported by the reader, as I/O errors: exit code 4.)
   cmd->add_option("A", o->a, "First mesh (its bounding-box diagonal is the unit of the relative figures)")->required();
   cmd->add_option("B", o->b, "Second mesh")->required();
-  cmd->add_flag("--json", o->json, "Print the report as one JSON object");
+  cmd->add_flag("--json", o->json, kJsonFlagHelp);
   cmd->add_option("--samples", o->samples,
                   "Samples per surface (0: ten per face of the larger mesh, Metro's default). With --sampling\n"
                   "meshlab: samples on the edges and again on the faces, besides every vertex")

@@ -4,6 +4,7 @@
 #include <nlohmann/json.hpp>
 
 #include "codec_cli_util.h"
+#include "json_report.h"
 #include "commands.h"
 #include "prm/error.h"
 #include "prm/mesh_io.h"
@@ -14,12 +15,14 @@ void add_decode_command(CLI::App& root) {
   auto* cmd = root.add_subcommand("decode", "Decompress a .prm stream into a mesh file (PLY/OBJ/OFF/glTF/GLB)");
   struct Options {
     std::string input, output;
-    bool json = false;
+    bool json = false, double_positions = false;
   };
   auto opt = std::make_shared<Options>();
-  cmd->add_option("input", opt->input, ".prm stream")->required()->check(CLI::ExistingFile);
+  cmd->add_option("input", opt->input, ".prm stream")->required();
   cmd->add_option("-o,--output", opt->output, "Output mesh file; the format follows the extension")->required();
-  cmd->add_flag("--json", opt->json, "Print the report as one JSON object");
+  cmd->add_flag("--double", opt->double_positions,
+                "PLY: write the dequantized positions as double (exact); default float, as glTF and other tools read");
+  cmd->add_flag("--json", opt->json, kJsonFlagHelp);
   cmd->callback([opt] {
     const std::vector<uint8_t> bytes = read_file_bytes(opt->input);
     codec::DecodeOptions dopt;
@@ -37,14 +40,15 @@ void add_decode_command(CLI::App& root) {
     for (size_t t = 0; t < d.num_triangles(); ++t)
       mesh.triangles[t] = {d.triangles[3 * t], d.triangles[3 * t + 1], d.triangles[3 * t + 2]};
     WriteOptions wo;
-    wo.double_positions = true;  // exact dequantized values in PLY
+    wo.double_positions = opt->double_positions;  // PLY only
     write_mesh(mesh, opt->output, wo);
     if (opt->json) {
-      nlohmann::json j = {{"input", opt->input},       {"output", opt->output},
-                          {"bytes", bytes.size()},     {"vertices", d.num_vertices()},
-                          {"triangles", d.num_triangles()}, {"bits", d.frame.bits},
-                          {"decode_ms", ms}};
-      std::printf("%s\n", j.dump().c_str());
+      JsonReport j("decode");
+      j.input(opt->input).output(opt->output).mesh_size(d.num_vertices(), d.num_triangles());
+      j.bytes(bytes.size(), d.num_vertices()).seconds(ms / 1000);
+      j["bits"] = d.frame.bits;
+      j["double_positions"] = opt->double_positions;
+      j.print();
     } else {
       std::printf("%s -> %s: %zu vertices, %zu triangles (%d-bit positions); decoded in %.1f ms\n",
                   opt->input.c_str(), opt->output.c_str(), d.num_vertices(), d.num_triangles(), d.frame.bits, ms);

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "codec_cli_util.h"
+#include "json_report.h"
 #include "commands.h"
 #include "prm/error.h"
 #include "prm/mesh_io.h"
@@ -36,14 +37,14 @@ void add_encode_command(CLI::App& root) {
     bool json = false;
   };
   auto opt = std::make_shared<Options>();
-  cmd->add_option("input", opt->input, "Mesh file to compress")->required()->check(CLI::ExistingFile);
+  cmd->add_option("input", opt->input, "Mesh file to compress")->required();
   cmd->add_option("-o,--output", opt->output, "Output .prm file")->required();
   cmd->add_option("--bits", opt->bits, "Quantization bits per coordinate (8..20)")->check(CLI::Range(8, 20));
   cmd->add_option("--max-version", opt->max_version,
                   "Newest format the stream may need, for older decoders: 1.4 (default), 1.3 (no patch contexts, spec "
                   "§8.4.1), 1.2 (no CLERS seam context either, §6.5.2; a general-path stream is then 1.0)")
       ->check(CLI::IsMember({"1.2", "1.3", "1.4"}));
-  cmd->add_flag("--json", opt->json, "Print the report as one JSON object");
+  cmd->add_flag("--json", opt->json, kJsonFlagHelp);
   cmd->callback([opt] {
     ReadReport rr;
     const Mesh mesh = read_mesh(opt->input, {}, &rr);
@@ -63,37 +64,28 @@ void add_encode_command(CLI::App& root) {
     // What reading and encoding left out of the stream (nothing is dropped silently).
     const size_t degenerate = rr.degenerate_dropped, unreferenced = rr.unreferenced_dropped + rep.unreferenced_dropped;
     if (opt->json) {
-      nlohmann::json j = {{"input", opt->input},
-                          {"output", opt->output},
-                          {"bits", bits},
-                          {"piecewise_regular", was_prm},
-                          {"vertices", rep.vertices},
-                          {"triangles", rep.triangles},
-                          {"components", rep.components},
-                          {"holes", rep.holes},
-                          {"genus_total", rep.handles},
-                          {"unreferenced_dropped", unreferenced},
-                          {"dropped",
-                           {{"faces_with_repeated_vertex", degenerate}, {"unreferenced_vertices", unreferenced}}},
-                          {"read",
-                           {{"file_vertices", rr.file_vertices},
-                            {"file_faces", rr.file_faces},
-                            {"polygons_triangulated", rr.polygons_triangulated},
-                            {"strip_triangles", rr.strip_triangles},
-                            {"vertices_welded", rr.vertices_welded}}},
-                          {"bytes",
-                           {{"total", rep.total_bytes},
-                            {"header", rep.header_bytes},
-                            {"connectivity", rep.connectivity_bytes},
-                            {"positions", rep.position_bytes},
-                            {"irregular_triangles", rep.irregular_bytes},
-                            {"patches", rep.patch_bytes},
-                            {"framing", rep.framing_bytes}}},
-                          {"bits_per_vertex",
-                           {{"connectivity", 8.0 * rep.connectivity_bytes / v},
-                            {"positions", 8.0 * rep.position_bytes / v},
-                            {"total", 8.0 * rep.total_bytes / v}}},
-                          {"encode_ms", ms}};
+      JsonReport j("encode");
+      j.input(opt->input).output(opt->output).mesh_size(rep.vertices, rep.triangles);
+      j.bytes(rep.total_bytes, rep.vertices,
+              {{"header", rep.header_bytes},
+               {"connectivity", rep.connectivity_bytes},
+               {"positions", rep.position_bytes},
+               {"irregular_triangles", rep.irregular_bytes},
+               {"patches", rep.patch_bytes},
+               {"framing", rep.framing_bytes}});
+      j.seconds(ms / 1000);
+      j["bits"] = bits;
+      j["piecewise_regular"] = was_prm;
+      j["components"] = rep.components;
+      j["holes"] = rep.holes;
+      j["genus_total"] = rep.handles;
+      j["unreferenced_dropped"] = unreferenced;
+      j["dropped"] = {{"faces_with_repeated_vertex", degenerate}, {"unreferenced_vertices", unreferenced}};
+      j["read"] = {{"file_vertices", rr.file_vertices},
+                   {"file_faces", rr.file_faces},
+                   {"polygons_triangulated", rr.polygons_triangulated},
+                   {"strip_triangles", rr.strip_triangles},
+                   {"vertices_welded", rr.vertices_welded}};
       if (was_prm)
         j["prm"] = {{"regular_triangles", rep.regular_triangles},
                     {"regular_patches", rep.regular_patches},
@@ -102,7 +94,7 @@ void add_encode_command(CLI::App& root) {
                     {"height_coding", rep.height_depth == 7 ? "linear prediction" : "difference patches"},
                     {"overlap_depth", rep.overlap_depth},
                     {"predicted_patches", rep.predicted_patches}};
-      std::printf("%s\n", j.dump().c_str());
+      j.print();
     } else {
       std::printf("%s -> %s: %zu bytes (%.3f bits/vertex)\n", opt->input.c_str(), opt->output.c_str(),
                   rep.total_bytes, 8.0 * rep.total_bytes / v);

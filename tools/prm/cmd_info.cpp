@@ -5,6 +5,7 @@
 
 #include "commands.h"
 #include "gltf_commands.h"
+#include "json_report.h"
 #include "prm/mesh_io.h"
 #include "prm/mesh_validate.h"
 #include "prm_stream_info.h"
@@ -25,7 +26,7 @@ void add_info_command(CLI::App& root) {
   auto opt = std::make_shared<Options>();
   cmd->add_option("input", opt->input, "Mesh file (OBJ, PLY, OFF, STL, glTF, GLB) or .prm stream")
       ->required();
-  cmd->add_flag("--json", opt->json, "Print the report as one JSON object");
+  cmd->add_flag("--json", opt->json, kJsonFlagHelp);
   cmd->add_option("--weld-tolerance", opt->weld,
                   "Weld vertices closer than this (model units; default: exact)")
       ->check(CLI::NonNegativeNumber);
@@ -49,14 +50,16 @@ void add_info_command(CLI::App& root) {
       nlohmann::json comps = nlohmann::json::array();
       for (const ComponentReport& c : r.per_component)
         comps.push_back({{"vertices", c.vertices},
-                         {"faces", c.faces},
+                         {"triangles", c.faces},
                          {"edges", c.edges},
                          {"boundary_loops", c.boundary_loops},
                          {"euler", c.euler},
                          {"manifold", c.manifold},
                          {"genus", c.genus < 0 ? nlohmann::json(nullptr) : nlohmann::json(c.genus)}});
-      nlohmann::json j = {
-          {"file", opt->input},
+      JsonReport report("info");
+      report.input(opt->input).mesh_size(r.vertices, r.faces);
+      nlohmann::json& j = report.json();
+      j.update(nlohmann::json{
           {"format", format_name(rr.format)},
           {"read",
            {{"file_vertices", rr.file_vertices},
@@ -67,8 +70,6 @@ void add_info_command(CLI::App& root) {
             {"unreferenced_dropped", rr.unreferenced_dropped},
             {"degenerate_dropped", rr.degenerate_dropped},
             {"notes", rr.notes}}},
-          {"vertices", r.vertices},
-          {"faces", r.faces},
           {"edges", r.edges},
           {"components", r.components},
           {"boundary_edges", r.boundary_edges},
@@ -87,8 +88,8 @@ void add_info_command(CLI::App& root) {
           {"per_component", comps},
           {"bbox", {{"min", r.bbox_min}, {"max", r.bbox_max}}},
           {"diagonal", r.diagonal},
-          {"problems", r.examples}};
-      std::printf("%s\n", j.dump().c_str());
+          {"problems", r.examples}});
+      report.print();
       return;
     }
     std::printf("%s (%s)\n", opt->input.c_str(), format_name(rr.format));

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
+#include "json_report.h"
 #include "prm/mesh_io.h"
 #include "prm/mesh_repair.h"
 #include "prm/mesh_validate.h"
@@ -42,7 +43,7 @@ void add_reliefs_command(CLI::App& root) {
                   "A small relief joins a neighbour only if all its faces face that axis by at least this (n.v; "
                   "default 0.02; --tau if smaller)")
       ->check(CLI::Range(1e-9, 0.57735));
-  cmd->add_flag("--json", opt->json, "Print the report as one JSON object");
+  cmd->add_flag("--json", opt->json, kJsonFlagHelp);
   cmd->callback([opt] {
     Mesh mesh = read_mesh(opt->input);
     RepairReport rep;
@@ -80,25 +81,24 @@ void add_reliefs_command(CLI::App& root) {
                            {"area_share", share(layout.reliefs[i].area)}});
       for (size_t a = 0; a < 6; ++a)
         axes[names[a]] = {{"reliefs", count_axis[a]}, {"area_share", share(per_axis[a])}};
-      const nlohmann::json j = {{"input", opt->input},
-                                {"output", opt->output},
-                                {"tau", opt->tau},
+      JsonReport report("reliefs");
+      report.input(opt->input).output(opt->output);
+      report.mesh_size(layout.mesh.positions.size(), layout.mesh.triangles.size()).seconds(ms / 1000);
+      report.json().update(nlohmann::json{{"tau", opt->tau},
                                 {"naive", opt->naive},
                                 {"geodesic", opt->geodesic},
                                 {"repair",
                                  {{"holes_closed", rep.holes_filled},
                                   {"pinched_vertices_split", rep.pinched_vertices_split}}},
-                                {"input_faces", mesh.triangles.size()},
-                                {"faces", layout.mesh.triangles.size()},
+                                {"input_triangles", mesh.triangles.size()},
                                 {"split_faces", layout.split_faces},
                                 {"inner_points", layout.inner_points},
                                 {"merged_reliefs", layout.merged_reliefs},
                                 {"reliefs", layout.reliefs.size()},
                                 {"boundary_length", layout.boundary_length},
                                 {"per_axis", axes},
-                                {"relief_list", reliefs},
-                                {"milliseconds", ms}};
-      std::printf("%s\n", j.dump().c_str());
+                                {"relief_list", reliefs}});
+      report.print();
       return;
     }
     std::printf("%s: %zu reliefs (tau %g%s), boundary length %.6g; %zu of %zu faces split, %zu small reliefs merged; "

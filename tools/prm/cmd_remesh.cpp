@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
+#include "json_report.h"
 #include "remesher_options.h"
 #include "prm/mesh_io.h"
 #include "prm/mesh_repair.h"
@@ -41,7 +42,7 @@ void add_remesh_command(CLI::App& root) {
   cmd->add_option("--samples", opt->samples, "Metro samples per surface for the error search (default 0: Metro's ten per face; fewer samples over-weight the vertices and bias the RMS up)");
   cmd->add_flag("--naive-reliefs", opt->naive, "Reliefs by closest axis only (for comparison)");
   add_remesher_options(cmd, opt->error_flip_weight, opt->no_fit);
-  cmd->add_flag("--json", opt->json, "Print the report as one JSON object");
+  cmd->add_flag("--json", opt->json, kJsonFlagHelp);
   cmd->callback([opt] {
     if (opt->grid <= 0 && opt->grid_fraction <= 0 && opt->target <= 0)
       throw CLI::ValidationError("remesh", "give one of --grid, --grid-fraction or --target-error");
@@ -83,24 +84,26 @@ void add_remesh_command(CLI::App& root) {
         search.push_back({{"grid_steps", st.grid}, {"grid_size", st.grid_size}, {"vertices", st.vertices},
                           {"regular_share", st.regular_share}, {"rms", st.error.rms}, {"max", st.error.max},
                           {"seconds", st.seconds}});
-      nlohmann::json j = {
-          {"input", opt->input}, {"output", opt->output}, {"holes_closed", rep.holes_filled},
-          {"n_o", input.positions.size()}, {"n_r", s.vertices}, {"faces", s.faces},
+      JsonReport report("remesh");
+      report.input(opt->input).output(opt->output).mesh_size(s.vertices, s.faces).seconds(secs);
+      report.distance(res.error.rms, res.error.max, reference.diagonal());
+      report.json().update(nlohmann::json{
+          {"holes_closed", rep.holes_filled},
+          {"n_o", input.positions.size()}, {"n_r", s.vertices},
           {"grid_steps", res.prm.lattice.A}, {"grid_size", static_cast<double>(res.prm.lattice.A) * res.prm.frame.step},
           {"grid_fraction", static_cast<double>(res.prm.lattice.A) * res.prm.frame.step / reference.diagonal()},
           {"tau", opt->tau}, {"reliefs", res.reliefs}, {"relief_boundary_length", res.relief_boundary_length},
           {"regular_faces", s.regular_faces}, {"regular_share", regular},
           {"regular_patches", remesh::count_regular_patches(res.prm)},
           {"lattice_vertices", s.lattice_vertices},
-          {"rms_error", res.error.rms}, {"max_error", res.error.max},
           {"unrepaired_triangles", s.unrepaired},
           {"stats", {{"sliced_vertices", s.sliced_vertices}, {"collapses", s.collapses}, {"cell_flips", s.cell_flips},
                      {"stuck", s.stuck}, {"fill_triangles", s.fill_triangles}, {"loops_broken", s.loops_broken},
                      {"seam_collapses", s.seam_collapses}, {"area_flips", s.area_flips}, {"valence_flips", s.valence_flips},
                      {"error_flips", s.error_flips}, {"repairs", s.repairs},
                      {"quantized_moves", s.quantized_moves}, {"quantized_unresolved", s.quantized_unresolved}}},
-          {"search", search}, {"seconds", secs}};
-      std::printf("%s\n", j.dump().c_str());
+          {"search", search}});
+      report.print();
       return;
     }
     std::printf("%s -> %s\n", opt->input.c_str(), opt->output.c_str());

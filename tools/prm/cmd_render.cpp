@@ -5,9 +5,10 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
+#include "json_report.h"
 #include "mesh_render.h"
 #include "prm/error.h"
-#include "prm/mesh_io.h"
+#include "read_any_mesh.h"
 
 namespace prm::cli {
 
@@ -33,7 +34,7 @@ void add_render_command(CLI::App& root) {
     bool json = false;
   };
   auto opt = std::make_shared<Options>();
-  cmd->add_option("input", opt->input, "Mesh file; PLY face properties red/green/blue give the colours")->required();
+  cmd->add_option("input", opt->input, "Mesh file, .prm stream or glTF asset (compressed primitives are decoded); PLY face properties red/green/blue give the colours")->required();
   cmd->add_option("-o,--output", opt->output, "Output PNG")->required();
   cmd->add_option("--view", opt->view, "front (from +z), back, left (from -x), right, top (from +y), bottom, iso")
       ->check(CLI::IsMember({"front", "back", "left", "right", "top", "bottom", "iso"}));
@@ -42,23 +43,25 @@ void add_render_command(CLI::App& root) {
       ->check(CLI::Range(1, 8));
   cmd->add_option("--edges", opt->edges, "Darken triangle edges by this fraction (0..1; default 0: no edges)")
       ->check(CLI::Range(0.0, 1.0));
-  cmd->add_flag("--json", opt->json, "Print the report as one JSON object");
+  cmd->add_flag("--json", opt->json, kJsonFlagHelp);
   cmd->callback([opt] {
     RenderOptions ro;
     std::tie(ro.width, ro.height) = parse_size(opt->size);
     ro.view = parse_view(opt->view);
     ro.supersample = opt->supersample;
     ro.edge_darkening = opt->edges;
-    const Mesh mesh = read_mesh(opt->input);
+    const Mesh mesh = read_any_mesh(opt->input);
     const auto t0 = std::chrono::steady_clock::now();
     const Image img = render_mesh(mesh, ro);
     write_png(img, opt->output);
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     if (opt->json) {
-      const nlohmann::json j = {{"input", opt->input}, {"output", opt->output}, {"view", opt->view},
-                                {"width", img.width},  {"height", img.height},  {"faces", mesh.num_faces()},
-                                {"milliseconds", ms}};
-      std::printf("%s\n", j.dump().c_str());
+      JsonReport j("render");
+      j.input(opt->input).output(opt->output).mesh_size(mesh.num_vertices(), mesh.num_faces()).seconds(ms / 1000);
+      j["view"] = opt->view;
+      j["width"] = img.width;
+      j["height"] = img.height;
+      j.print();
     } else {
       std::printf("%s: %zu faces, %s view, %dx%d -> %s; %.0f ms\n", opt->input.c_str(), mesh.num_faces(),
                   opt->view.c_str(), img.width, img.height, opt->output.c_str(), ms);

@@ -5,7 +5,10 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
+#include <chrono>
+
 #include "commands.h"
+#include "json_report.h"
 #include "prm/error.h"
 #include "prm/mesh_io.h"
 #include "prm/mesh_repair.h"
@@ -26,8 +29,9 @@ void add_repair_command(CLI::App& root) {
   auto opt = std::make_shared<Options>();
   cmd->add_option("input", opt->input, "Mesh file")->required();
   cmd->add_option("-o,--output", opt->output, "Repaired mesh file (.ply, .obj, .off, .glb)")->required();
-  cmd->add_flag("--json", opt->json, "Print the report as one JSON object");
+  cmd->add_flag("--json", opt->json, kJsonFlagHelp);
   cmd->callback([opt] {
+    const auto t0 = std::chrono::steady_clock::now();
     ReadReport rr;
     const Mesh in = read_mesh(opt->input, {}, &rr);
     RepairReport rep;
@@ -40,9 +44,9 @@ void add_repair_command(CLI::App& root) {
     write_mesh(out, opt->output);
     const MeshReport after = validate_mesh(out);
     if (opt->json) {
-      nlohmann::json j = {
-          {"input", opt->input},
-          {"output", opt->output},
+      JsonReport report("repair");
+      report.input(opt->input).output(opt->output).mesh_size(after.vertices, after.faces).seconds(seconds_since(t0));
+      report.json().update(nlohmann::json{
           {"unreferenced_dropped_on_read", rr.unreferenced_dropped},
           {"repeated_index_removed", rep.repeated_index_removed},
           {"duplicate_removed", rep.duplicate_removed},
@@ -52,13 +56,11 @@ void add_repair_command(CLI::App& root) {
           {"fill_triangles", rep.fill_triangles},
           {"notes", rep.notes},
           {"result",
-           {{"vertices", after.vertices},
-            {"faces", after.faces},
-            {"closed", after.closed()},
+           {{"closed", after.closed()},
             {"manifold", after.manifold()},
             {"oriented", after.oriented()},
-            {"genus", after.genus_sum() < 0 ? nlohmann::json(nullptr) : nlohmann::json(after.genus_sum())}}}};
-      std::printf("%s\n", j.dump().c_str());
+            {"genus", after.genus_sum() < 0 ? nlohmann::json(nullptr) : nlohmann::json(after.genus_sum())}}}});
+      report.print();
       return;
     }
     std::printf("%s -> %s\n", opt->input.c_str(), opt->output.c_str());

@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
+#include "json_report.h"
+
 #include "prm/error.h"
 #include "prm/gltf/decompress.h"
 #include "prm/gltf/document.h"
@@ -187,13 +189,13 @@ void run_gltf_unpack(const std::string& input, const std::string& output, bool a
     json prims = json::array();
     for (const auto& [key, bytes] : report.compressed_bytes)
       prims.push_back({{"mesh", key.first}, {"primitive", key.second}, {"codec", report.codec.at(key)}, {"bytes", bytes}});
-    json j = {{"input", input},
-              {"output", output},
-              {"primitives", prims},
-              {"meshopt_views", report.meshopt_views},
-              {"file_bytes_in", file_size(input)},
-              {"file_bytes_out", file_size(output)}};
-    std::printf("%s\n", j.dump().c_str());
+    JsonReport j("unpack");
+    j.input(input).output(output).bytes(file_size(input), 0, {{"output", file_size(output)}});
+    j["primitives"] = prims;
+    j["meshopt_views"] = report.meshopt_views;
+    j["file_bytes_in"] = file_size(input);
+    j["file_bytes_out"] = file_size(output);
+    j.print();
     return;
   }
   std::printf("%s -> %s: %zu PRM, %zu Draco primitive(s) and %zu meshopt bufferView(s) decoded, file %zu -> %zu bytes\n",
@@ -247,12 +249,14 @@ bool print_gltf_prm_info(const std::string& path, bool as_json) {
   }
   const size_t total = file_size(path);
   if (as_json) {
-    json out = {{"input", path},
-                {"extensionsUsed", j.value("extensionsUsed", json::array())},
-                {"extensionsRequired", j.value("extensionsRequired", json::array())},
-                {"primitives", prims},
-                {"bytes", {{"file", total}, {"prm_streams", stream_total}, {"other", total - std::min(total, stream_total)}}}};
-    std::printf("%s\n", out.dump().c_str());
+    JsonReport out("info");
+    out.input(path).bytes(total, 0,
+                          {{"file", total}, {"prm_streams", stream_total}, {"other", total - std::min(total, stream_total)}});
+    out["format"] = "gltf";
+    out["extensionsUsed"] = j.value("extensionsUsed", json::array());
+    out["extensionsRequired"] = j.value("extensionsRequired", json::array());
+    out["primitives"] = prims;
+    out.print();
     return true;
   }
   std::printf("%s: glTF asset, %zu meshes, %zu nodes; extensions used: %s; required: %s\n", path.c_str(),

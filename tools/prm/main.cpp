@@ -7,6 +7,7 @@
 
 #include "commands.h"
 #include "exit_codes.h"
+#include "json_report.h"
 #include "prm/error.h"
 
 namespace {
@@ -30,6 +31,20 @@ void refuse_non_finite_numbers(CLI::App& app) {
   for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) refuse_non_finite_numbers(*sub);
 }
 
+// `--json` anywhere on the command line: errors are then reported as one JSON object on stderr as well.
+bool wants_json(int argc, char** argv) {
+  for (int i = 1; i < argc; ++i)
+    if (std::string(argv[i]) == "--json") return true;
+  return false;
+}
+
+// One error: the text line on stderr, and with --json the error object (docs/cli-json.md "Errors") after it.
+int report_error(bool json, int code, const char* name, const char* prefix, const std::string& message) {
+  std::fprintf(stderr, "prm: %s: %s\n", prefix, message.c_str());
+  if (json) std::fprintf(stderr, "%s\n", prm::cli::error_json(code, name, message).c_str());
+  return code;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -39,7 +54,8 @@ int main(int argc, char** argv) {
   app.fallthrough();
   app.footer(
       "Exit codes: 0 success, 1 bad command line, 2 invalid input (malformed, truncated or lying file,\n"
-      "unsupported mesh), 3 the work could not be done, 4 a file could not be read or written.\n"
+      "unsupported mesh), 3 the work could not be done, 4 a file could not be read or written (a missing input\n"
+      "file in every command). With --json, an error is also one JSON object on stderr (docs/cli-json.md).\n"
       "Run `prm <command> --help` for the options of a command.");
   app.set_version_flag("--version", "prm 0.1.0");
 
@@ -55,6 +71,7 @@ int main(int argc, char** argv) {
   add_unpack_command(app);
   refuse_non_finite_numbers(app);
 
+  const bool json = wants_json(argc, argv);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -64,23 +81,21 @@ int main(int argc, char** argv) {
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
-    app.exit(e);
-    return kExitUsage;
+    if (!json) {
+      app.exit(e);
+      return kExitUsage;
+    }
+    return report_error(json, kExitUsage, "usage", "error", e.what());
   } catch (const prm::InputError& e) {
-    std::fprintf(stderr, "prm: error: %s\n", e.what());
-    return kExitBadInput;
+    return report_error(json, kExitBadInput, "bad_input", "error", e.what());
   } catch (const prm::IoError& e) {
-    std::fprintf(stderr, "prm: error: %s\n", e.what());
-    return kExitIo;
+    return report_error(json, kExitIo, "io", "error", e.what());
   } catch (const Failure& e) {
-    std::fprintf(stderr, "prm: failed: %s\n", e.what());
-    return kExitFailed;
+    return report_error(json, kExitFailed, "failed", "failed", e.what());
   } catch (const std::bad_alloc&) {
-    std::fprintf(stderr, "prm: error: out of memory\n");
-    return kExitFailed;
+    return report_error(json, kExitFailed, "out_of_memory", "error", "out of memory");
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "prm: internal error: %s\n", e.what());
-    return kExitInternal;
+    return report_error(json, kExitInternal, "internal", "internal error", e.what());
   }
   return kExitOk;
 }

@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
+#include "json_report.h"
+
 #include "codec_cli_util.h"
 #include "prm/codec.h"
 #include "prm/error.h"
@@ -82,15 +84,15 @@ void print_prm_stream_info(const std::string& path, bool json) {
   const std::vector<uint8_t> bytes = read_file_bytes(path);
   const auto info = codec::inspect(bytes.data(), bytes.size());
   if (!info.ok()) {
-    if (json)
-      std::printf("%s\n", nlohmann::json{{"file", path},
-                                         {"format", "prm"},
-                                         {"total_bytes", bytes.size()},
-                                         {"decodes", false},
-                                         {"decode_error", describe(info.status)},
-                                         {"error", error_json(info.status)}}
-                               .dump()
-                               .c_str());
+    if (json) {
+      JsonReport report("info");
+      report.input(path).bytes(bytes.size(), 0);
+      report["format"] = "prm";
+      report["decodes"] = false;
+      report["decode_error"] = describe(info.status);
+      report["error"] = error_json(info.status);
+      report.print();
+    }
     invalid_stream(path, info.status);
   }
   const codec::StreamInfo& s = info.value;
@@ -107,13 +109,13 @@ void print_prm_stream_info(const std::string& path, bool json) {
                           {"offset", sec.offset},
                           {"bytes", sec.size},
                           {"bits_per_vertex", 8.0 * sec.size / v}});
-    nlohmann::json j = {
-        {"file", path},
+    JsonReport report("info");
+    report.input(path).mesh_size(s.vertices, s.triangles).bytes(s.total_bytes, s.vertices, stream_byte_split(bytes));
+    nlohmann::json& j = report.json();
+    j.update(nlohmann::json{
         {"format", "prm"},
         {"version", std::to_string(s.version_major) + "." + std::to_string(s.version_minor)},
         {"flags", s.flags},
-        {"vertices", s.vertices},
-        {"triangles", s.triangles},
         {"position_bits", s.frame.bits},
         {"origin", {s.frame.origin[0], s.frame.origin[1], s.frame.origin[2]}},
         {"step", s.frame.step},
@@ -122,15 +124,12 @@ void print_prm_stream_info(const std::string& path, bool json) {
         {"header_bytes", s.header_bytes},
         {"sections", sections},
         {"crc32", s.crc},
-        {"total_bytes", s.total_bytes},
-        {"bits_per_vertex", 8.0 * s.total_bytes / v},
-        {"byte_split", stream_byte_split(bytes)},
-        {"decodes", dec.ok()}};
+        {"decodes", dec.ok()}});
     if (!dec.ok()) {
       j["decode_error"] = describe(dec.status);
       j["error"] = error_json(dec.status);
     }
-    std::printf("%s\n", j.dump().c_str());
+    report.print();
     if (!dec.ok()) invalid_stream(path, dec.status);
     return;
   }
