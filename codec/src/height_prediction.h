@@ -109,13 +109,20 @@ struct LpTable {
   void set_defaults(int s) {
     for (int t = 0; t < kLpMaxTaps; ++t) weight[s][t] = t < 3 && s >= kLpFirstDefault ? kLpDefault[s - kLpFirstDefault][t] : 0;
   }
+  // The first enabled set inside `mask` is the smallest index of an enabled set whose mask is a subset of it (kLpNoSet,
+  // 255, is above every index): each set marks its own mask, then the minimum flows to the supersets one offset bit
+  // at a time (14 passes over the 2^14 masks instead of up to 38 tests per mask; the same table).
   void build_selection() {
-    first_set.assign(size_t{1} << kLpOffsets, kLpNoSet);
-    for (uint32_t mask = 0; mask < (1u << kLpOffsets); ++mask)
-      for (int s = 0; s < kLpSets; ++s)
-        if (enabled[s] && (mask & kLpSetMask[s]) == kLpSetMask[s]) {
-          first_set[mask] = static_cast<uint8_t>(s);
-          break;
+    constexpr uint32_t n = 1u << kLpOffsets;
+    first_set.assign(n, kLpNoSet);
+    uint8_t* f = first_set.data();
+    for (int s = kLpSets; s-- > 0;)
+      if (enabled[s]) f[kLpSetMask[s]] = static_cast<uint8_t>(s);
+    for (uint32_t stride = 1; stride < n; stride <<= 1)
+      for (uint32_t base = 0; base < n; base += 2 * stride)
+        for (uint32_t i = base; i < base + stride; ++i) {
+          const uint8_t a = f[i], b = f[i + stride];
+          f[i + stride] = a < b ? a : b;
         }
   }
 };
