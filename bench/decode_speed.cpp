@@ -6,6 +6,7 @@
 // interleaved rounds (PRM, Draco, PRM, ...), best round kept; per vertex of the decoded mesh.
 //
 //   prm_bench_decode [--rounds=N] FILE.prm...
+//   prm_bench_decode --profile=N FILE.prm...   only our decoder, N times per file, no timing (for callgrind or perf)
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -46,16 +47,18 @@ double best_time(F&& call, int rounds) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  int rounds = 15;
+  int rounds = 15, profile = 0;
   std::vector<std::string> files;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a.rfind("--rounds=", 0) == 0)
       rounds = std::max(1, std::atoi(a.c_str() + 9));
+    else if (a.rfind("--profile=", 0) == 0)
+      profile = std::max(1, std::atoi(a.c_str() + 10));
     else if (!a.empty() && a[0] != '-')
       files.push_back(a);
     else {
-      std::fprintf(stderr, "usage: %s [--rounds=N] FILE.prm...\n", argv[0]);
+      std::fprintf(stderr, "usage: %s [--rounds=N | --profile=N] FILE.prm...\n", argv[0]);
       return a == "--help" || a == "-h" ? 0 : 1;
     }
   }
@@ -69,6 +72,10 @@ int main(int argc, char** argv) {
     if (!in || !decoded.ok()) {
       std::fprintf(stderr, "%s: %s\n", file.c_str(), in ? decoded.status.message.c_str() : "cannot read");
       status = 2;
+      continue;
+    }
+    if (profile > 0) {
+      for (int k = 0; k < profile; ++k) (void)prm::codec::decode(bytes.data(), bytes.size());
       continue;
     }
     const prm::codec::DecodedMesh& d = decoded.value;
