@@ -327,7 +327,9 @@ inline int lp_activity(const std::array<uint32_t, kLpOffsets>& id, const std::ve
       ++count;
     }
   if (count == 0) return 8;
-  const uint64_t x = static_cast<uint64_t>(3 * sum / count);
+  // 3 * sum / count, count 1..6: divisions by constants (multiplications) instead of a 64-bit division per height.
+  const uint64_t s3 = static_cast<uint64_t>(3 * sum);
+  const uint64_t x = count == 1 ? s3 : count == 2 ? s3 / 2 : count == 3 ? s3 / 3 : count == 4 ? s3 / 4 : count == 5 ? s3 / 5 : s3 / 6;
   return x == 0 ? 0 : std::min(int_class(x) + 1, 7);  // the bit length of x, at most 7
 }
 
