@@ -28,8 +28,14 @@ done
 # MODULARIZE + EXPORT_ES6: a factory the ES module imports; web,worker: the page and its Web Worker (node tests hand
 # the module the .wasm bytes, so the loader never fetches). Exceptions stay disabled: the decoder catches only
 # bad_alloc, and an allocation failure aborts the instance instead. emmalloc: 1.9 kB smaller gzipped than dlmalloc.
+# Binaryen's -O3 inlines every function that has one caller, whatever its size: the whole decoder became one 71 kB
+# function, which V8 runs in its baseline tier (Liftoff; wasm has no on-stack replacement) until its optimizing tier
+# has compiled all of it: tens of decodes on a busy machine, at 10-50x the optimized time. Capping that inlining at
+# 300 bytes keeps functions of at most 18 kB (optimized after a few decodes), the same optimized speed, and a
+# smaller module.
 emcc -O3 -flto -DPRM_STATIC_DEFINE -I"$root/codec/include" -I"$work/include" "$web/wasm/prm_wasm.c" \
   "$work/codec/libprm_decoder.a" -o "$web/dist/prm_decoder_wasm.js" \
   -sMODULARIZE=1 -sEXPORT_ES6=1 -sEXPORT_NAME=createPrmModule -sENVIRONMENT=web,worker -sALLOW_MEMORY_GROWTH=1 \
-  -sFILESYSTEM=0 -sMALLOC=emmalloc -sEXPORTED_FUNCTIONS="$exports" -sEXPORTED_RUNTIME_METHODS=UTF8ToString || exit 3
+  -sFILESYSTEM=0 -sMALLOC=emmalloc -sEXPORTED_FUNCTIONS="$exports" -sEXPORTED_RUNTIME_METHODS=UTF8ToString \
+  -sBINARYEN_EXTRA_PASSES=--one-caller-inline-max-function-size=300 || exit 3
 echo "web/build.sh: $(stat -c %s "$web/dist/prm_decoder_wasm.wasm") B web/dist/prm_decoder_wasm.wasm"

@@ -109,13 +109,20 @@ struct LpTable {
   void set_defaults(int s) {
     for (int t = 0; t < kLpMaxTaps; ++t) weight[s][t] = t < 3 && s >= kLpFirstDefault ? kLpDefault[s - kLpFirstDefault][t] : 0;
   }
+  // The first enabled set inside `mask` is the smallest index of an enabled set whose mask is a subset of it (kLpNoSet,
+  // 255, is above every index): each set marks its own mask, then the minimum flows to the supersets one offset bit
+  // at a time (14 passes over the 2^14 masks instead of up to 38 tests per mask; the same table).
   void build_selection() {
-    first_set.assign(size_t{1} << kLpOffsets, kLpNoSet);
-    for (uint32_t mask = 0; mask < (1u << kLpOffsets); ++mask)
-      for (int s = 0; s < kLpSets; ++s)
-        if (enabled[s] && (mask & kLpSetMask[s]) == kLpSetMask[s]) {
-          first_set[mask] = static_cast<uint8_t>(s);
-          break;
+    constexpr uint32_t n = 1u << kLpOffsets;
+    first_set.assign(n, kLpNoSet);
+    uint8_t* f = first_set.data();
+    for (int s = kLpSets; s-- > 0;)
+      if (enabled[s]) f[kLpSetMask[s]] = static_cast<uint8_t>(s);
+    for (uint32_t stride = 1; stride < n; stride <<= 1)
+      for (uint32_t base = 0; base < n; base += 2 * stride)
+        for (uint32_t i = base; i < base + stride; ++i) {
+          const uint8_t a = f[i], b = f[i + stride];
+          f[i + stride] = a < b ? a : b;
         }
   }
 };
@@ -171,14 +178,19 @@ class LpRaster {
       for (int t = 0; t < kLpOffsets; ++t) delta_[t] = kLpOffset[t][1] * width_ + kLpOffset[t][0];
       return shared;
     }
+    // Sparse: (j, i) as one key (j - jmin) * (imax - imin + 1) + (i - imin), which orders like (j, i); the pairs
+    // (key, id) sort like (j, i, id), with the same sort as the dense grid's extra vertices.
+    i0_ = imin;
+    j0_ = jmin;
+    width_ = imax - imin + 1;
+    i1_ = imax;
+    j1_ = jmax;
     sorted_.resize(n);
-    for (uint32_t l = 0; l < n; ++l) sorted_[l] = {level.coord[l][1], level.coord[l][0], l};
-    std::sort(sorted_.begin(), sorted_.end(), [](const Key& a, const Key& b) {
-      return a.j != b.j ? a.j < b.j : a.i != b.i ? a.i < b.i : a.id < b.id;
-    });
-    for (uint32_t r = 1; r < n; ++r) shared += sorted_[r].j == sorted_[r - 1].j && sorted_[r].i == sorted_[r - 1].i;
+    for (uint32_t l = 0; l < n; ++l) sorted_[l] = {index(level.coord[l][0], level.coord[l][1]), l};
+    std::sort(sorted_.begin(), sorted_.end());
+    for (uint32_t r = 1; r < n; ++r) shared += sorted_[r].first == sorted_[r - 1].first;
     order_.reserve(n);
-    for (const Key& k : sorted_) order_.push_back(k.id);
+    for (const auto& k : sorted_) order_.push_back(k.second);
     return shared;
   }
   const std::vector<uint32_t>& order() const { return order_; }
@@ -202,24 +214,21 @@ class LpRaster {
   }
 
  private:
-  struct Key {
-    int64_t j, i;
-    uint32_t id;
-  };
   int64_t index(int64_t i, int64_t j) const { return (j - j0_) * width_ + (i - i0_); }
   uint32_t find(int64_t i, int64_t j) const {
-    auto it = std::lower_bound(sorted_.begin(), sorted_.end(), Key{j, i, 0},
-                               [](const Key& a, const Key& b) { return a.j != b.j ? a.j < b.j : a.i < b.i; });
+    if (i < i0_ || i > i1_ || j < j0_ || j > j1_) return kNone;
+    const int64_t key = index(i, j);
+    auto it = std::lower_bound(sorted_.begin(), sorted_.end(), std::pair<int64_t, uint32_t>{key, 0});
     // The first entry of (j, i) is its lowest local id.
-    return it != sorted_.end() && it->j == j && it->i == i ? it->id : kNone;
+    return it != sorted_.end() && it->first == key ? it->second : kNone;
   }
 
   bool dense_ = false;
-  int64_t i0_ = 0, j0_ = 0, width_ = 0;
+  int64_t i0_ = 0, j0_ = 0, width_ = 0, i1_ = 0, j1_ = 0;  // sparse: the footprint [i0, i1] x [j0, j1]
   std::array<int64_t, kLpOffsets> delta_{};
   std::vector<uint32_t> grid_;
   std::vector<std::pair<int64_t, uint32_t>> extra_;  // (cell, id) of the vertices after a cell's first
-  std::vector<Key> sorted_;
+  std::vector<std::pair<int64_t, uint32_t>> sorted_;  // sparse: (key, id), sorted
   std::vector<uint32_t> order_;
 };
 
@@ -318,7 +327,9 @@ inline int lp_activity(const std::array<uint32_t, kLpOffsets>& id, const std::ve
       ++count;
     }
   if (count == 0) return 8;
-  const uint64_t x = static_cast<uint64_t>(3 * sum / count);
+  // 3 * sum / count, count 1..6: divisions by constants (multiplications) instead of a 64-bit division per height.
+  const uint64_t s3 = static_cast<uint64_t>(3 * sum);
+  const uint64_t x = count == 1 ? s3 : count == 2 ? s3 / 2 : count == 3 ? s3 / 3 : count == 4 ? s3 / 4 : count == 5 ? s3 / 5 : s3 / 6;
   return x == 0 ? 0 : std::min(int_class(x) + 1, 7);  // the bit length of x, at most 7
 }
 

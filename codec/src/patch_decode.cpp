@@ -36,8 +36,6 @@ Status read_patches(const uint8_t* data, size_t size, uint64_t offset, const Clo
   const PatchSet ps = build_patches(mesh, cls);
   auto models = std::make_unique<PatchModels>();
   models->lp.sign_context = contexts;
-  std::vector<uint32_t> vertex_corner;  // §10.2, for the base references (§8.4.1)
-  if (contexts) vertex_corners(mesh, vertex_corner);
   auto bit = [&](BitModel& m, bool) { return rc.decode_bit(m) != 0; };
   auto value = [&](SignedIntModel& m, int max_class, int64_t, int64_t& out, BitModel* sign = nullptr) {
     return decode_signed(rc, m, max_class, out, sign ? *sign : m.sign);
@@ -59,6 +57,10 @@ Status read_patches(const uint8_t* data, size_t size, uint64_t offset, const Clo
   // §9.7.4 For the vertices without a tap set; only linear-prediction streams need it (Vertex_Corner is O(T)).
   std::optional<LpNeighbours> nb;
   if (predicted) nb.emplace(mesh, known, q.data(), local, global);
+  // §10.2 Vertex_Corner, for the base references (§8.4.1): the one LpNeighbours made, if any.
+  std::vector<uint32_t> own_vertex_corner;
+  if (contexts && !predicted) vertex_corners(mesh, own_vertex_corner);
+  const std::vector<uint32_t>& vertex_corner = predicted ? nb->vertex_corner : own_vertex_corner;
   std::array<int64_t, 2> previous{0, 0};
   const int64_t coord_bound = int64_t{1} << (bits + 1);
   for (size_t p = 0; p < ps.size(); ++p) {

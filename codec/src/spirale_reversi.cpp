@@ -15,6 +15,7 @@ void SpiraleReversi::init(uint32_t num_triangles, uint32_t num_vertices) {
   parent_.clear();
   count_.clear();
   id_.clear();
+  odd_.clear();
   stack_.clear();
   closed_ = 0;
   decoded_ = 0;
@@ -29,6 +30,7 @@ void SpiraleReversi::reserve(uint32_t triangles) {
   parent_.reserve(t / 2 + 16);  // about one record per two triangles (V = T / 2 + 2 on a sphere)
   count_.reserve(t / 2 + 16);
   id_.reserve(t / 2 + 16);
+  odd_.reserve(t / 2 + 16);
 }
 
 bool SpiraleReversi::fail(const char* message) {
@@ -72,8 +74,7 @@ uint32_t SpiraleReversi::gate_start_seam() {
   if (stack_.empty()) return 0;
   const uint32_t c0 = 3 * stack_.back();
   auto odd = [&](uint32_t c) {
-    const uint32_t r1 = find(rec_[corner_next(c)]), r2 = find(rec_[corner_prev(c)]);
-    return (id_[r1] >= 0 && count_[r1] != 6) || (id_[r2] >= 0 && count_[r2] != 6);
+    return (odd_[find(rec_[corner_next(c)])] | odd_[find(rec_[corner_prev(c)])]) != 0;
   };
   // One side: 1 odd vertex found, 0 the fan closed (every triangle seen), 2 an open edge or the bound.
   auto walk = [&](uint32_t (*turn)(uint32_t)) {
@@ -99,6 +100,7 @@ bool SpiraleReversi::close_vertex(uint32_t record) {
   if (id_[r] >= 0) return fail("a vertex is closed twice");
   if (closed_ >= num_vertices_) return fail("more vertices closed than the component sizes allow");
   id_[r] = static_cast<int32_t>(num_vertices_ - 1 - closed_);
+  odd_[r] = count_[r] != 6;
   ++closed_;
   return true;
 }
@@ -262,6 +264,7 @@ bool SpiraleReversi::finish(std::vector<uint32_t>& corner_vertex) {
   std::vector<uint32_t>().swap(parent_);  // the records are done with
   std::vector<uint32_t>().swap(count_);
   std::vector<int32_t>().swap(id_);
+  std::vector<uint8_t>().swap(odd_);
   // Every glued edge joins corners of the same records at both ends and records only merge through a triangle
   // glued to both (§6.4.2), so each vertex is one closed fan. That no two edges join the same pair of vertices is
   // checked while the fans are walked for the positions (§6.8, §10.3).

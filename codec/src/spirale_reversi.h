@@ -73,11 +73,14 @@ class SpiraleReversi {
     parent_.push_back(r);
     count_.push_back(0);
     id_.push_back(-1);
+    odd_.push_back(0);
     return r;
   }
   void set_corner(uint32_t c, uint32_t record) {
     rec_[c] = record;
-    ++count_[find(record)];
+    const uint32_t r = find(record);
+    ++count_[r];
+    if (id_[r] >= 0) odd_[r] = count_[r] != 6;
   }
   void glue(uint32_t c1, uint32_t c2) {
     opp_[c1] = static_cast<int32_t>(c2);
@@ -102,6 +105,9 @@ class SpiraleReversi {
   TailTable<uint32_t> rec_;
   std::vector<uint32_t> parent_, count_;
   std::vector<int32_t> id_;
+  // Per root record: closed with a triangle count other than 6 (§6.5.2 Seam), kept with id_ and count_: a root's
+  // count and id change only in set_corner and close_vertex (records merge only while open).
+  std::vector<uint8_t> odd_;
   std::vector<uint32_t> stack_;
   uint32_t num_triangles_ = 0, num_vertices_ = 0, closed_ = 0, decoded_ = 0;
   std::string error_;

@@ -1,33 +1,11 @@
 // web/bench/bench.js: decode each asset with PRM's wasm and with Draco's, alternating, `runs` times each; the
-// median milliseconds. Both decode to a positions Float32Array and a Uint32Array of indices copied out of the heap,
-// as the PRM plugin and DRACOLoader hand them to three.js.
+// median and the fastest milliseconds (on a shared machine the fastest run is the one least delayed by other jobs).
+// Both decode to a positions Float32Array and a Uint32Array of indices copied out of the heap, as the PRM plugin and
+// DRACOLoader hand them to three.js.
 import { createDecoder } from '../src/prm_decoder.js';
+import { dracoDecode } from './draco_decode.js';
 
 const dracoWasmUrl = '../node_modules/three/examples/jsm/libs/draco/draco_decoder.wasm';
-
-function dracoDecode(draco, bytes) {
-  const decoder = new draco.Decoder();
-  const mesh = new draco.Mesh();
-  try {
-    const status = decoder.DecodeArrayToMesh(bytes, bytes.byteLength, mesh);
-    if (!status.ok() || mesh.ptr === 0) throw new Error(`Draco: ${status.error_msg()}`);
-    const numIndices = mesh.num_faces() * 3;
-    let ptr = draco._malloc(numIndices * 4);
-    decoder.GetTrianglesUInt32Array(mesh, numIndices * 4, ptr);
-    const indices = new Uint32Array(draco.HEAPF32.buffer, ptr, numIndices).slice();
-    draco._free(ptr);
-    const attribute = decoder.GetAttribute(mesh, decoder.GetAttributeId(mesh, draco.POSITION));
-    const n = mesh.num_points() * 3;
-    ptr = draco._malloc(n * 4);
-    decoder.GetAttributeDataArrayForAllPoints(mesh, attribute, draco.DT_FLOAT32, n * 4, ptr);
-    const positions = new Float32Array(draco.HEAPF32.buffer, ptr, n).slice();
-    draco._free(ptr);
-    return { positions, indices };
-  } finally {
-    draco.destroy(mesh);
-    draco.destroy(decoder);
-  }
-}
 
 const median = (a) => { const s = [...a].sort((x, y) => x - y); const m = s.length >> 1; return s.length % 2 ? s[m] : (s[m - 1] + s[m]) / 2; };
 
@@ -55,7 +33,8 @@ window.runBench = async (assetsUrl, runs) => {
     }
     rows.push({ ...a, prm_bytes: prmBytes.length, drc_bytes: drcBytes.length, prm_vertices: p.positions.length / 3,
                 prm_triangles: p.indices.length / 3, drc_vertices: d.positions.length / 3,
-                drc_triangles: d.indices.length / 3, prm_ms: median(tp), drc_ms: median(td), runs });
+                drc_triangles: d.indices.length / 3, prm_ms: median(tp), drc_ms: median(td),
+                prm_min_ms: Math.min(...tp), drc_min_ms: Math.min(...td), runs });
   }
   document.getElementById('out').textContent = JSON.stringify(rows, null, 1);
   return rows;

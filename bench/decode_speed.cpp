@@ -1,0 +1,111 @@
+// prm_bench_decode: decode speed per vertex of PRM streams against Draco's decoder on the same mesh (bench/README.md,
+// "Decode speed per vertex"). For each .prm file: our decoder (prm::codec::decode, float positions out) and Draco
+// 1.5.5 (edgebreaker, level 10) decoding the mesh our stream decodes to, quantized at the stream's bit depth on the
+// stream's own grid (explicit quantization with our origin and (2^b - 1) x our step, as Table 1's S_r: Draco then
+// reproduces the decoded mesh exactly). Times are CPU seconds of the process (this 2-core machine is shared),
+// interleaved rounds (PRM, Draco, PRM, ...), best round kept; per vertex of the decoded mesh.
+//
+//   prm_bench_decode [--rounds=N] FILE.prm...
+//   prm_bench_decode --profile=N FILE.prm...   only our decoder, N times per file, no timing (for callgrind or perf)
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "draco_codec.h"
+#include "prm/codec.h"
+#include "prm/mesh.h"
+
+namespace {
+
+double cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+// Best CPU time per call of `call` over `rounds` rounds of at least 50 ms each.
+template <typename F>
+double best_time(F&& call, int rounds) {
+  double best = HUGE_VAL;
+  int inner = 1;
+  for (int r = 0; r < rounds; ++r) {
+    const double t0 = cpu_seconds();
+    for (int k = 0; k < inner; ++k) call();
+    const double t = (cpu_seconds() - t0) / inner;
+    best = std::min(best, t);
+    inner = static_cast<int>(std::clamp(std::ceil(0.05 / std::max(t, 1e-9)), 1.0, 1e5));
+  }
+  return best;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  int rounds = 15, profile = 0;
+  std::vector<std::string> files;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a.rfind("--rounds=", 0) == 0)
+      rounds = std::max(1, std::atoi(a.c_str() + 9));
+    else if (a.rfind("--profile=", 0) == 0)
+      profile = std::max(1, std::atoi(a.c_str() + 10));
+    else if (!a.empty() && a[0] != '-')
+      files.push_back(a);
+    else {
+      std::fprintf(stderr, "usage: %s [--rounds=N | --profile=N] FILE.prm...\n", argv[0]);
+      return a == "--help" || a == "-h" ? 0 : 1;
+    }
+  }
+  std::printf("| stream | bytes | V | T | bits | PRM ms | PRM ns/vertex | Draco B | Draco ms | Draco ns/vertex | "
+              "vertices/s PRM/Draco |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  int status = 0;
+  for (const std::string& file : files) {
+    std::ifstream in(file, std::ios::binary);
+    const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const auto decoded = prm::codec::decode(bytes.data(), bytes.size());
+    if (!in || !decoded.ok()) {
+      std::fprintf(stderr, "%s: %s\n", file.c_str(), in ? decoded.status.message.c_str() : "cannot read");
+      status = 2;
+      continue;
+    }
+    if (profile > 0) {
+      for (int k = 0; k < profile; ++k) (void)prm::codec::decode(bytes.data(), bytes.size());
+      continue;
+    }
+    const prm::codec::DecodedMesh& d = decoded.value;
+    prm::Mesh mesh;
+    const size_t nv = d.positions_f32.size() / 3, nt = d.triangles.size() / 3;
+    mesh.positions.resize(nv);
+    for (size_t v = 0; v < nv; ++v)
+      for (size_t k = 0; k < 3; ++k) mesh.positions[v][k] = d.positions_f32[3 * v + k];
+    mesh.triangles.resize(nt);
+    for (size_t t = 0; t < nt; ++t)
+      for (size_t k = 0; k < 3; ++k) mesh.triangles[t][k] = d.triangles[3 * t + k];
+    prm::bench::DracoGrid grid;
+    for (size_t a = 0; a < 3; ++a) grid.origin[a] = static_cast<float>(d.frame.origin[a]);
+    grid.range = static_cast<float>(d.frame.step * static_cast<double>((1 << d.frame.bits) - 1));
+    std::string why;
+    auto draco = prm::bench::DracoCodec(10, d.frame.bits, grid).start(mesh, &why);
+    if (!draco || !draco->encode() || !draco->decode()) {
+      std::fprintf(stderr, "%s: Draco: %s\n", file.c_str(), why.c_str());
+      status = 3;
+      continue;
+    }
+    double ours = HUGE_VAL, theirs = HUGE_VAL;
+    for (int r = 0; r < rounds; ++r) {
+      ours = std::min(ours, best_time([&] { (void)prm::codec::decode(bytes.data(), bytes.size()); }, 2));
+      theirs = std::min(theirs, best_time([&] { (void)draco->decode(); }, 2));
+    }
+    std::printf("| %s | %zu | %zu | %zu | %d | %.3f | %.1f | %zu | %.3f | %.1f | %.2f |\n", file.c_str(), bytes.size(),
+                nv, nt, d.frame.bits, 1e3 * ours, 1e9 * ours / static_cast<double>(nv), draco->stream_bytes(),
+                1e3 * theirs, 1e9 * theirs / static_cast<double>(nv), theirs / ours);
+    std::fflush(stdout);
+  }
+  return status;
+}
