@@ -33,7 +33,7 @@ for f in "$shared"/*.{ply,obj,off,stl,glb,gltf} "$cgal"/*.{ply,obj,off,stl,glb,g
   read_ok=$((read_ok + 1))
   verts=$(python3 -c 'import json,sys; print(json.load(open(sys.argv[1]))["vertices"])' "$tmp/info.json")
   other="$f" with=itself
-  if "$prm" encode "$f" -o "$tmp/m.prm" > /dev/null 2>&1 && "$prm" decode "$tmp/m.prm" -o "$tmp/m.ply" > /dev/null 2>&1; then
+  if "$prm" encode "$f" -o "$tmp/m.prm" > /dev/null 2>&1 && "$prm" decode "$tmp/m.prm" -o "$tmp/m.ply" --double > /dev/null 2>&1; then
     other="$tmp/m.ply" with="12-bit decode"
   fi
   if "$prm" compare "$f" "$other" --json > "$tmp/cmp.json" 2> "$tmp/err"; then

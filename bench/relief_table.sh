@@ -33,7 +33,7 @@ for f in "$meshes"/*.ply "$meshes"/*.off "$meshes"/*.obj; do
     elif [ "$tau" = 0.2+merge ]; then args=(--tau 0.2)
     else args=(--tau "$tau" --min-relief 16 --merge-facing "$tau"); fi
     "$prm" reliefs "$in" -o "$work/r.ply" "${args[@]}" --json |
-      python3 -c 'import json,sys; d=json.load(sys.stdin); print(sys.argv[1], sys.argv[2], len(d["relief_list"]), d["boundary_length"]/float(sys.argv[3]), d["milliseconds"])' "$name" "$tau" "$diag"
+      python3 -c 'import json,sys; d=json.load(sys.stdin); print(sys.argv[1], sys.argv[2], len(d["relief_list"]), d["boundary_length"]/float(sys.argv[3]), 1000 * d["seconds"])' "$name" "$tau" "$diag"
   done
 done > "$work/rows.txt"
 

@@ -40,7 +40,7 @@ import json, sys
 d = json.load(open(sys.argv[3]))
 print(json.dumps({"mesh": sys.argv[1], "target": float(sys.argv[2]), "ok": True, "g": d["grid_size"],
                   "g_rel": d["grid_fraction"], "n_o": d["n_o"], "n_r": d["n_r"], "regular": d["regular_share"],
-                  "patches": d.get("regular_patches", -1), "rms": d["rms_error"], "max": d["max_error"],
+                  "patches": d.get("regular_patches", -1), "rms": d["distance"]["rms_rel"], "max": d["distance"]["max_rel"],
                   "unrepaired": d["unrepaired_triangles"], "seconds": d["seconds"]}))
 PY
     else

@@ -32,7 +32,7 @@ if $prm --help | grep -q ' pack'; then
   $prm pack "$mesh" -o "$out/$name.prm" --target-error "$target"
   echo
   echo "== 3. unpack: decode the stream"
-  $prm unpack "$out/$name.prm" -o "$out/$name.decoded.ply"
+  $prm unpack "$out/$name.prm" -o "$out/$name.decoded.ply" --double  # the dequantized positions exactly
 else
   echo
   echo "== 2. remesh to RMS error <= $target of the diagonal (paper §2)"
@@ -40,7 +40,7 @@ else
   echo
   echo "== 3. encode the piecewise regular mesh, then decode it"
   $prm encode "$out/$name.prm.ply" -o "$out/$name.prm"
-  $prm decode "$out/$name.prm" -o "$out/$name.decoded.ply"
+  $prm decode "$out/$name.prm" -o "$out/$name.decoded.ply" --double
 fi
 echo
 echo "== 4. the decoded mesh against the original (Metro-style distances)"

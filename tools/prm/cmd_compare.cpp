@@ -10,7 +10,7 @@
 
 #include "commands.h"
 #include "json_report.h"
-#include "prm/mesh_io.h"
+#include "read_any_mesh.h"
 #include "prm/metro_distance.h"
 #include "prm/progress.h"
 
@@ -42,8 +42,8 @@ nlohmann::json side_json(const OneSidedDistance& d, const DistanceReport& r) {
 
 void run(const CompareOptions& o) {
   if (o.json) Progress::set_enabled(false);
-  const Mesh a = read_mesh(o.a);
-  const Mesh b = read_mesh(o.b);
+  const Mesh a = read_any_mesh(o.a);
+  const Mesh b = read_any_mesh(o.b);
   MetroOptions mo;
   mo.samples = o.samples;
   mo.seed = o.seed;
@@ -113,8 +113,8 @@ void add_compare_command(CLI::App& root) {
       "fractions of A's bounding-box diagonal.");
   auto o = std::make_shared<CompareOptions>();
   // (Missing files are reported by the reader, as I/O errors: exit code 4.)
-  cmd->add_option("A", o->a, "First mesh (its bounding-box diagonal is the unit of the relative figures)")->required();
-  cmd->add_option("B", o->b, "Second mesh")->required();
+  cmd->add_option("A", o->a, "First mesh, .prm stream or glTF asset (its bounding-box diagonal is the unit of the relative figures)")->required();
+  cmd->add_option("B", o->b, "Second mesh, .prm stream or glTF asset")->required();
   cmd->add_flag("--json", o->json, kJsonFlagHelp);
   cmd->add_option("--samples", o->samples,
                   "Samples per surface (0: ten per face of the larger mesh, Metro's default). With --sampling\n"

@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <cstdio>
+#include <chrono>
 #include <nlohmann/json.hpp>
 
 #include "json_report.h"
@@ -182,15 +183,18 @@ void note_gltf_to_prm(const std::string& input) {
 void run_gltf_unpack(const std::string& input, const std::string& output, bool as_json) {
   if (!gltf::is_gltf_path(output))
     throw CLI::ValidationError("unpack", "a glTF input unpacks to a .glb or .gltf output, not '" + output + "'");
+  const auto t0 = std::chrono::steady_clock::now();
   gltf::Document doc = gltf::read_document(input);
   const gltf::DecompressReport report = gltf::decompress(doc);
   gltf::write_document(doc, output);
+  const double seconds = seconds_since(t0);
   if (as_json) {
     json prims = json::array();
     for (const auto& [key, bytes] : report.compressed_bytes)
       prims.push_back({{"mesh", key.first}, {"primitive", key.second}, {"codec", report.codec.at(key)}, {"bytes", bytes}});
     JsonReport j("unpack");
     j.input(input).output(output).bytes(file_size(input), 0, {{"output", file_size(output)}});
+    j.seconds(seconds);
     j["primitives"] = prims;
     j["meshopt_views"] = report.meshopt_views;
     j["file_bytes_in"] = file_size(input);

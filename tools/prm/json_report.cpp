@@ -56,12 +56,15 @@ JsonReport& JsonReport::distance(double rms_rel, double max_rel, double diagonal
   return *this;
 }
 
-void JsonReport::print() const { std::printf("%s\n", j_.dump().c_str()); }
+// Invalid UTF-8 (a path as the shell gave it) is replaced, not thrown: a report never fails on its own keys.
+void JsonReport::print() const {
+  std::printf("%s\n", j_.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace).c_str());
+}
 
 std::string error_json(int exit_code, const char* name, const std::string& message) {
   const nlohmann::json j = {{json_key::kSchema, kJsonSchemaVersion},
                             {json_key::kError, {{"code", exit_code}, {"name", name}, {"message", message}}}};
-  // Replace invalid UTF-8 (a path, a file's bytes quoted in a message) rather than throw while reporting an error.
+  // As print(): a path or a file's bytes quoted in the message may be invalid UTF-8.
   return j.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
 }
 

@@ -80,6 +80,15 @@ int main(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
+  } catch (const CLI::ValidationError& e) {
+    // CLI::ExistingFile's refusal: a missing input is an I/O error (exit 4) in every command, as the readers say.
+    if (std::string(e.what()).find("File does not exist") != std::string::npos)
+      return report_error(json, kExitIo, "io", "error", e.what());
+    if (!json) {
+      app.exit(e);
+      return kExitUsage;
+    }
+    return report_error(json, kExitUsage, "usage", "error", e.what());
   } catch (const CLI::ParseError& e) {
     if (!json) {
       app.exit(e);

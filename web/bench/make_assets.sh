@@ -10,7 +10,7 @@ entries=()
 for mesh in "$@"; do
   name="$(basename "${mesh%.*}")"
   "$prm" pack "$mesh" -o "$out/$name.prm" --grid-fraction 0.01 >/dev/null
-  "$prm" decode "$out/$name.prm" -o "$out/$name.prm.ply" >/dev/null
+  "$prm" decode "$out/$name.prm" -o "$out/$name.prm.ply" --double >/dev/null
   prm_rms=$(rms "$mesh" "$out/$name.prm.ply")
   lo=6; hi=16  # bisection: Draco's RMS falls as -qp grows
   while [ $lo -lt $hi ]; do
