@@ -2,7 +2,7 @@
 // "Decode speed per vertex"). For each .prm file: our decoder (prm::codec::decode, float positions out) and Draco
 // 1.5.5 (edgebreaker, level 10) decoding the mesh our stream decodes to, quantized at the stream's bit depth on the
 // stream's own grid (explicit quantization with our origin and (2^b - 1) x our step, as Table 1's S_r: Draco then
-// reproduces the decoded mesh exactly). Times are CPU seconds of the process (this 2-core machine is shared),
+// reproduces the decoded mesh exactly). Times are CPU seconds of the thread (cpu_time.h: this 2-core machine is shared),
 // interleaved rounds (PRM, Draco, PRM, ...), best round kept; per vertex of the decoded mesh.
 //
 //   prm_bench_decode [--rounds=N] FILE.prm...
@@ -11,40 +11,15 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <ctime>
 #include <fstream>
 #include <iterator>
 #include <string>
 #include <vector>
 
+#include "cpu_time.h"
 #include "draco_codec.h"
 #include "prm/codec.h"
 #include "prm/mesh.h"
-
-namespace {
-
-double cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
-// Best CPU time per call of `call` over `rounds` rounds of at least 50 ms each.
-template <typename F>
-double best_time(F&& call, int rounds) {
-  double best = HUGE_VAL;
-  int inner = 1;
-  for (int r = 0; r < rounds; ++r) {
-    const double t0 = cpu_seconds();
-    for (int k = 0; k < inner; ++k) call();
-    const double t = (cpu_seconds() - t0) / inner;
-    best = std::min(best, t);
-    inner = static_cast<int>(std::clamp(std::ceil(0.05 / std::max(t, 1e-9)), 1.0, 1e5));
-  }
-  return best;
-}
-
-}  // namespace
 
 int main(int argc, char** argv) {
   int rounds = 15, profile = 0;
@@ -99,8 +74,8 @@ int main(int argc, char** argv) {
     }
     double ours = HUGE_VAL, theirs = HUGE_VAL;
     for (int r = 0; r < rounds; ++r) {
-      ours = std::min(ours, best_time([&] { (void)prm::codec::decode(bytes.data(), bytes.size()); }, 2));
-      theirs = std::min(theirs, best_time([&] { (void)draco->decode(); }, 2));
+      ours = std::min(ours, prm::bench::best_cpu_time([&] { (void)prm::codec::decode(bytes.data(), bytes.size()); }, 2));
+      theirs = std::min(theirs, prm::bench::best_cpu_time([&] { (void)draco->decode(); }, 2));
     }
     std::printf("| %s | %zu | %zu | %zu | %d | %.3f | %.1f | %zu | %.3f | %.1f | %.2f |\n", file.c_str(), bytes.size(),
                 nv, nt, d.frame.bits, 1e3 * ours, 1e9 * ours / static_cast<double>(nv), draco->stream_bytes(),

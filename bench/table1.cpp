@@ -23,13 +23,13 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <ctime>
 #include <filesystem>
 #include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "cpu_time.h"
 #include "draco_codec.h"
 #include "prm/codec.h"
 #include "prm/mesh_io.h"
@@ -92,27 +92,6 @@ double paper_target(const std::string& file, double fallback) {
   return fallback;
 }
 
-double thread_cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
-// Best CPU time per call of `call` (single-threaded) over `rounds` rounds of at least 50 ms each.
-template <typename F>
-double best_time(F&& call, int rounds) {
-  double best = HUGE_VAL;
-  int inner = 1;
-  for (int r = 0; r < rounds; ++r) {
-    const double t0 = thread_cpu_seconds();
-    for (int k = 0; k < inner; ++k) call();
-    const double t = (thread_cpu_seconds() - t0) / inner;
-    best = std::min(best, t);
-    inner = static_cast<int>(std::clamp(std::ceil(0.05 / std::max(t, 1e-9)), 1.0, 1e5));
-  }
-  return best;
-}
-
 // grid_size > 0: remesh at that grid size (model units) instead of searching the one for `target`. bits: the
 // stream's quantization (0: pack() chooses, the smallest stream that meets the target).
 Result measure(const std::string& name, const std::string& path, double target, int rounds, double grid_size = 0,
@@ -147,7 +126,7 @@ Result measure(const std::string& name, const std::string& path, double target, 
            pack.report.header_bytes - pack.report.framing_bytes;
 
   // Encode time: the codec alone (the pack timed it once; take the best of a few more).
-  r.enc = std::min(pack.seconds_encode, best_time(
+  r.enc = std::min(pack.seconds_encode, prm::bench::best_cpu_time(
                                             [&] {
                                               prm::codec::EncodeReport rep;
                                               (void)prm::pipeline::encode_prm_mesh(pack.remesh.prm, &rep);
@@ -207,9 +186,9 @@ Result measure(const std::string& name, const std::string& path, double target, 
   // Decode times, interleaved: PRM's stream, Draco's stream of the original, Draco's stream of the same PRM.
   r.dec = r.draco_dec = r.draco_dec_same = HUGE_VAL;
   for (int k = 0; k < rounds; ++k) {
-    r.dec = std::min(r.dec, best_time([&] { (void)prm::codec::decode(pack.stream.data(), pack.stream.size()); }, 2));
-    r.draco_dec = std::min(r.draco_dec, best_time([&] { (void)on_original->decode(); }, 2));
-    r.draco_dec_same = std::min(r.draco_dec_same, best_time([&] { (void)on_prm->decode(); }, 2));
+    r.dec = std::min(r.dec, prm::bench::best_cpu_time([&] { (void)prm::codec::decode(pack.stream.data(), pack.stream.size()); }, 2));
+    r.draco_dec = std::min(r.draco_dec, prm::bench::best_cpu_time([&] { (void)on_original->decode(); }, 2));
+    r.draco_dec_same = std::min(r.draco_dec_same, prm::bench::best_cpu_time([&] { (void)on_prm->decode(); }, 2));
   }
   return r;
 }
