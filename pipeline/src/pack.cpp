@@ -112,9 +112,6 @@ PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bit
     return against ? measure_with(*against, mesh) : measure(mesh);
   };
   auto error = [&](const remesh::PrmMesh& prm) {
-    // A grid whose quantized mesh keeps vertices on one point (or faces without area) fails like one too coarse:
-    // the search moves on rather than stream a degenerate mesh.
-    if (prm.stats.quantized_unresolved > 0) return remesh::ErrorEstimate{HUGE_VAL, HUGE_VAL};
     if (po.height_lambda > 0) return encode_and_measure(prm, po, nullptr, nullptr);
     const Mesh& candidate = prm.mesh;
     Mesh q;
@@ -263,7 +260,7 @@ EffortPlan effort_plan(int effort) {
     case 0: p.steps = 1; p.search_samples_per_face = 2; p.lambda_rounds = 2; p.grid_tolerance = 0.15; p.accept_error = 0.8; break;
     case 1: p.steps = 1; p.search_samples_per_face = 2; p.lambda_rounds = 3; p.grid_tolerance = 0.1; p.accept_error = 0.85; break;
     case 2: p.steps = 1; p.search_samples_per_face = 4; p.lambda_rounds = 4; p.grid_tolerance = 0.06; p.accept_error = 0.9; break;
-    case 3: p.steps = 1; p.search_samples_per_face = 4; p.accept_error = 0.95; break;
+    case 3: p.steps = 1; p.search_samples_per_face = 4; p.lambda_rounds = 4; break;
     case 4: p.steps = 1; p.search_samples_per_face = 4; break;
     case 5: p.steps = 2; p.search_samples_per_face = 4; break;
     case 6: p.steps = 3; p.search_samples_per_face = 4; break;
@@ -285,7 +282,9 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
   if (repaired) closed = repair_mesh(input, &repair);  // throws InputError when it cannot be made a closed manifold
   const Mesh& source = repaired ? closed : input;
   const double seconds_repair = seconds_since(t0);
-  const EffortPlan plan = effort_plan(options.effort);
+  // The effort applies to the search of the step; a given bit depth or step scale is searched as it always was.
+  const EffortPlan plan =
+      effort_plan(options.bits > 0 || options.step_scale > 0 ? kMaxEffort : (effort_plan(options.effort), options.effort));
   MetroOptions mo;
   mo.samples = options.metro_samples;  // 0: Metro's ten per face, as `prm compare` measures
   const MetroReference reference(source, mo);
