@@ -23,7 +23,8 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
 }
 
-// Sparse estimates in [kSparseBand[0], kSparseBand[1]] x the target are measured again at full density.
+// Sparse estimates of a grid's error in [kSparseBand[0], kSparseBand[1]] x the target are measured again at full
+// density (the lambda bisection keeps the sparse ones: the result's full-density check corrects it).
 constexpr double kSparseBand[2] = {0.97, 1.08};
 
 // What one search shares across its attempts: the repaired input, its relief layout, and the Metro references of the
@@ -78,11 +79,21 @@ PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bit
     const DistanceReport d = r.compare(m);
     return remesh::ErrorEstimate{d.rel(d.rms), d.rel(d.max)};
   };
+  // The lambda bisection keeps the sparse estimates, scaled by the full / sparse ratio of the last grid measured both
+  // ways (the final full-density check below corrects what that misses).
+  bool in_band_at_full_density = true;
+  double sparse_bias = 1;
   auto measure = [&](const Mesh& m) {
-    const remesh::ErrorEstimate e = measure_with(reference, m);
-    if (&reference == &ctx.full || e.rms < kSparseBand[0] * ro.target_error || e.rms > kSparseBand[1] * ro.target_error)
+    remesh::ErrorEstimate e = measure_with(reference, m);
+    if (&reference == &ctx.full) return e;
+    if (!in_band_at_full_density) {
+      e.rms *= sparse_bias;
       return e;
-    return measure_with(ctx.full, m);
+    }
+    if (e.rms < kSparseBand[0] * ro.target_error || e.rms > kSparseBand[1] * ro.target_error) return e;
+    const remesh::ErrorEstimate full = measure_with(ctx.full, m);
+    if (e.rms > 0) sparse_bias = full.rms / e.rms;
+    return full;
   };
   // The stream of a candidate with options o, and the error of its decoded mesh.
   // zero_area: the decoded mesh's triangles of zero area (the chosen heights can put a corner on a line).
@@ -128,6 +139,7 @@ PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bit
   // The error left below the target buys smaller residuals: the largest lambda that still meets it.
   if (options.optimize_heights && options.height_lambda <= 0 && options.target_error > 0) {
     const auto t1 = std::chrono::steady_clock::now();
+    in_band_at_full_density = false;
     // The error grows with lambda: bisection for the last one that meets the target (in at most plan.lambda_rounds).
     int lo = -1, hi = static_cast<int>(std::size(kHeightLambdas));  // lo meets (-1: rounding), hi does not
     for (int round = 0; hi - lo > 1 && round < ctx.plan.lambda_rounds; ++round) {
@@ -248,7 +260,7 @@ EffortPlan effort_plan(int effort) {
     case 0: p.steps = 1; p.search_samples_per_face = 2; p.lambda_rounds = 2; p.grid_tolerance = 0.15; p.accept_error = 0.8; break;
     case 1: p.steps = 1; p.search_samples_per_face = 2; p.lambda_rounds = 3; p.grid_tolerance = 0.1; p.accept_error = 0.85; break;
     case 2: p.steps = 1; p.search_samples_per_face = 4; p.lambda_rounds = 4; p.grid_tolerance = 0.06; p.accept_error = 0.9; break;
-    case 3: p.steps = 1; p.search_samples_per_face = 4; p.accept_error = 0.95; break;
+    case 3: p.steps = 1; p.search_samples_per_face = 4; p.lambda_rounds = 4; break;
     case 4: p.steps = 1; p.search_samples_per_face = 4; break;
     case 5: p.steps = 2; p.search_samples_per_face = 4; break;
     case 6: p.steps = 3; p.search_samples_per_face = 4; break;
@@ -270,7 +282,9 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
   if (repaired) closed = repair_mesh(input, &repair);  // throws InputError when it cannot be made a closed manifold
   const Mesh& source = repaired ? closed : input;
   const double seconds_repair = seconds_since(t0);
-  const EffortPlan plan = effort_plan(options.effort);
+  // The effort applies to the search of the step; a given bit depth or step scale is searched as it always was.
+  const EffortPlan plan =
+      effort_plan(options.bits > 0 || options.step_scale > 0 ? kMaxEffort : (effort_plan(options.effort), options.effort));
   MetroOptions mo;
   mo.samples = options.metro_samples;  // 0: Metro's ten per face, as `prm compare` measures
   const MetroReference reference(source, mo);
