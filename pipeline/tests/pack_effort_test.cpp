@@ -31,28 +31,33 @@ TEST(PackEffort, LevelsOutsideTheRangeAreRefused) {
 }
 
 // Each level below the exhaustive one (GridFromTargetError covers that) on a small real mesh: the decoded stream
-// meets the target, measured independently at Metro's full density, and has no zero-area triangle.
-TEST(PackEffort, EveryLevelMeetsTheTarget) {
+// meets the target, measured independently at Metro's full density, and has no zero-area triangle. One test per
+// level, so that ctest runs them side by side.
+class PackEffortLevel : public ::testing::TestWithParam<int> {};
+
+TEST_P(PackEffortLevel, MeetsTheTarget) {
+  const int effort = GetParam();
   const prm::Mesh input = prm::read_mesh(std::string(PRM_SHARED_MESHES) + "/spot.obj");
   const double target = 5e-4;
-  for (int effort = prm::pipeline::kMinEffort; effort < prm::pipeline::kMaxEffort; ++effort) {
-    PackOptions o;
-    o.target_error = target;
-    o.effort = effort;
-    const prm::pipeline::PackResult r = prm::pipeline::pack(input, o);
-    ASSERT_FALSE(r.tried.empty());
-    EXPECT_LE(r.remesh.error.rms, prm::pipeline::kQuantizationMargin * target) << "effort " << effort;
-    const auto decoded = prm::codec::decode(r.stream.data(), r.stream.size());
-    ASSERT_TRUE(decoded.ok()) << decoded.status.message;
-    EXPECT_EQ(prm::pipeline::count_zero_area_triangles(decoded.value), 0u) << "effort " << effort;
-    EXPECT_EQ(decoded.value.frame.bits, r.bits);
-    const prm::DistanceReport d = prm::metro_distance(input, prm::pipeline::to_mesh(decoded.value));
-    EXPECT_LE(d.rel(d.rms), target) << "effort " << effort;
-    // The reported error is the full-density measurement of this stream.
-    EXPECT_NEAR(r.remesh.error.rms, d.rel(d.rms), 1e-3 * target) << "effort " << effort;
-    std::printf("spot at %g, effort %d: %zu bytes, %d bits, step x%.3f, RMS %.4e, %zu grids\n", target, effort,
-                r.stream.size(), r.bits, r.step_scale, d.rel(d.rms), r.remesh_rounds);
-  }
+  PackOptions o;
+  o.target_error = target;
+  o.effort = effort;
+  const prm::pipeline::PackResult r = prm::pipeline::pack(input, o);
+  ASSERT_FALSE(r.tried.empty());
+  EXPECT_LE(r.remesh.error.rms, prm::pipeline::kQuantizationMargin * target);
+  const auto decoded = prm::codec::decode(r.stream.data(), r.stream.size());
+  ASSERT_TRUE(decoded.ok()) << decoded.status.message;
+  EXPECT_EQ(prm::pipeline::count_zero_area_triangles(decoded.value), 0u);
+  EXPECT_EQ(decoded.value.frame.bits, r.bits);
+  const prm::DistanceReport d = prm::metro_distance(input, prm::pipeline::to_mesh(decoded.value));
+  EXPECT_LE(d.rel(d.rms), target);
+  // The reported error is the full-density measurement of this stream.
+  EXPECT_NEAR(r.remesh.error.rms, d.rel(d.rms), 1e-3 * target);
+  std::printf("spot at %g, effort %d: %zu bytes, %d bits, step x%.3f, RMS %.4e, %zu grids\n", target, effort,
+              r.stream.size(), r.bits, r.step_scale, d.rel(d.rms), r.remesh_rounds);
 }
+
+INSTANTIATE_TEST_SUITE_P(BelowExhaustive, PackEffortLevel,
+                         ::testing::Range(prm::pipeline::kMinEffort, prm::pipeline::kMaxEffort));
 
 }  // namespace
