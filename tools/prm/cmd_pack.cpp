@@ -6,6 +6,7 @@
 
 #include "codec_cli_util.h"
 #include "commands.h"
+#include "json_report.h"
 #include "gltf_commands.h"
 #include "prm_stream_info.h"
 #include "remesher_options.h"
@@ -77,7 +78,7 @@ void add_pack_command(CLI::App& root) {
   cmd->add_flag("--fallback", opt->fallback,
                 "With a .glb/.gltf output: also store the decoded geometry uncompressed, so that loaders without "
                 "PRM_mesh_compression show it (the extension is then not required)");
-  cmd->add_flag("--json", opt->json, "Print the report as one JSON object");
+  cmd->add_flag("--json", opt->json, kJsonFlagHelp);
   cmd->callback([opt] {
     if (is_prm_stream_path(opt->input) && is_gltf_file_path(opt->output))
       return wrap_prm_stream(opt->input, opt->output, opt->fallback, opt->json);
@@ -135,40 +136,37 @@ void add_pack_command(CLI::App& root) {
       for (const auto& st : r.remesh.search) search.push_back({{"grid_steps", st.grid}, {"rms", st.error.rms}});
       nlohmann::json tried = nlohmann::json::array();
       for (const auto& t : r.tried) tried.push_back({{"bits", t.bits}, {"step_scale", t.step_scale}, {"bytes", t.bytes}});
-      nlohmann::json j = {
-          {"input", opt->input},
-          {"output", opt->output},
-          {"n_o", input.num_vertices()},
-          {"n_r", rep.vertices},
-          {"triangles", rep.triangles},
-          {"holes_closed", r.repair.holes_filled},
-          {"changes", changes},
-          {"notes", r.repair.notes},
-          {"grid_size", g},
-          {"grid_steps", r.remesh.prm.lattice.A},
-          {"tau", opt->tau},
-          {"bits", r.bits},
-          {"step_scale", r.step_scale},
-          {"step", r.remesh.prm.frame.step},
-          {"tried", tried},
-          {"effort", opt->effort},
-          {"remesh_rounds", r.remesh_rounds},
-          {"search", search},
-          {"regular_share", s.faces ? static_cast<double>(s.regular_faces) / s.faces : 0.0},
-          {"regular_patches", rep.regular_patches},
-          {"height_lambda", r.codec_options.height_lambda},
-          {"height_sweeps", r.codec_options.height_lambda > 0 ? r.codec_options.height_sweeps : 0},
-          {"rms_error", r.remesh.error.rms},
-          {"max_error", r.remesh.error.max},
-          {"bytes",
-           {{"total", rep.total_bytes},
-            {"connectivity", rep.connectivity_bytes},
-            {"irregular", rep.irregular_bytes},
-            {"geometry", geometry},
-            {"header_and_framing", rep.header_bytes + rep.framing_bytes}}},
-          {"bits_per_vertex", 8.0 * rep.total_bytes / n_r},
-          {"seconds", {{"repair", r.seconds_repair}, {"remesh", r.seconds_remesh}, {"encode", r.seconds_encode}}}};
-      std::printf("%s\n", j.dump().c_str());
+      // The shared schema (json_report.h, docs/cli-json.md), then pack's own keys.
+      JsonReport j("pack");
+      j.input(opt->input).output(opt->output).mesh_size(rep.vertices, rep.triangles);
+      j.bytes(rep.total_bytes, rep.vertices,
+              {{"connectivity", rep.connectivity_bytes},
+               {"irregular", rep.irregular_bytes},
+               {"geometry", geometry},
+               {"header_and_framing", rep.header_bytes + rep.framing_bytes}});
+      j.seconds(r.seconds_repair + r.seconds_remesh + r.seconds_encode);
+      j.distance(r.remesh.error.rms, r.remesh.error.max);
+      j["seconds_by_stage"] = {{"repair", r.seconds_repair}, {"remesh", r.seconds_remesh}, {"encode", r.seconds_encode}};
+      j["n_o"] = input.num_vertices();
+      j["n_r"] = rep.vertices;
+      j["holes_closed"] = r.repair.holes_filled;
+      j["changes"] = changes;
+      j["notes"] = r.repair.notes;
+      j["grid_size"] = g;
+      j["grid_steps"] = r.remesh.prm.lattice.A;
+      j["tau"] = opt->tau;
+      j["bits"] = r.bits;
+      j["step_scale"] = r.step_scale;
+      j["step"] = r.remesh.prm.frame.step;
+      j["tried"] = tried;
+      j["effort"] = opt->effort;
+      j["remesh_rounds"] = r.remesh_rounds;
+      j["search"] = search;
+      j["regular_share"] = s.faces ? static_cast<double>(s.regular_faces) / s.faces : 0.0;
+      j["regular_patches"] = rep.regular_patches;
+      j["height_lambda"] = r.codec_options.height_lambda;
+      j["height_sweeps"] = r.codec_options.height_lambda > 0 ? r.codec_options.height_sweeps : 0;
+      j.print();
     } else {
       std::printf("%s -> %s: %zu bytes, %.3f bits per vertex\n", opt->input.c_str(), opt->output.c_str(),
                   rep.total_bytes, 8.0 * rep.total_bytes / n_r);

@@ -96,31 +96,30 @@ void run_gltf_pack(const std::string& input, const std::string& output, const pi
       if (r.compressed) {
         p["stream_bytes"] = r.stream_bytes;
         p["bits"] = r.bits;
-        p["rms_error"] = r.rms;
-        p["max_error"] = r.max;
-        p["diagonal"] = r.diagonal;
+        p["distance"] = {{"rms_rel", r.rms}, {"max_rel", r.max}, {"rms", r.rms * r.diagonal},
+                         {"max", r.max * r.diagonal}, {"diagonal", r.diagonal}};  // docs/cli-json.md "distance"
         p["repaired"] = r.repaired;
       } else {
         p["reason"] = r.reason;
       }
       prims.push_back(std::move(p));
     }
-    json j = {{"input", input},
-              {"output", output},
-              {"extension", gltf::kExtensionName},
-              {"fallback", fallback},
-              {"decoded_input", {{"draco_primitives", report.input.draco_primitives},
-                                 {"meshopt_views", report.input.meshopt_views},
-                                 {"prm_primitives", report.input.prm_primitives}}},
-              {"primitives", prims},
-              {"totals", {{"primitives", report.primitives.size()},
-                          {"compressed", compressed},
-                          {"kept", report.primitives.size() - compressed},
-                          {"bytes_in", bytes_in},
-                          {"bytes_out", bytes_out},
-                          {"file_bytes_in", file_in},
-                          {"file_bytes_out", file_out}}}};
-    std::printf("%s\n", j.dump().c_str());
+    JsonReport j("pack");  // the shared schema (docs/cli-json.md): the asset's bytes; per primitive below
+    j.input(input).output(output).bytes(file_out, 0, {{"input", file_in}});
+    j["extension"] = gltf::kExtensionName;
+    j["fallback"] = fallback;
+    j["decoded_input"] = {{"draco_primitives", report.input.draco_primitives},
+                          {"meshopt_views", report.input.meshopt_views},
+                          {"prm_primitives", report.input.prm_primitives}};
+    j["primitives"] = prims;
+    j["totals"] = {{"primitives", report.primitives.size()},
+                   {"compressed", compressed},
+                   {"kept", report.primitives.size() - compressed},
+                   {"bytes_in", bytes_in},
+                   {"bytes_out", bytes_out},
+                   {"file_bytes_in", file_in},
+                   {"file_bytes_out", file_out}};
+    j.print();
     return;
   }
   std::printf("%s -> %s: %zu of %zu primitives compressed with %s (%s), file %zu -> %zu bytes\n", input.c_str(),
@@ -160,10 +159,15 @@ void wrap_prm_stream(const std::string& input, const std::string& output, bool f
   const size_t bytes_out = gltf::attach_prm_stream(doc, 0, 0, stream, decoded.value, fallback);
   gltf::write_document(doc, output);
   if (as_json) {
-    const json j = {{"input", input}, {"output", output}, {"extension", gltf::kExtensionName}, {"fallback", fallback},
-                    {"vertices", decoded.value.num_vertices()}, {"triangles", decoded.value.num_triangles()},
-                    {"stream_bytes", stream.size()}, {"bytes_out", bytes_out}, {"file_bytes_out", file_size(output)}};
-    std::printf("%s\n", j.dump().c_str());
+    JsonReport j("pack");
+    j.input(input).output(output).mesh_size(decoded.value.num_vertices(), decoded.value.num_triangles());
+    j.bytes(file_size(output), 0, {{"stream", stream.size()}, {"primitive", bytes_out}});
+    j["extension"] = gltf::kExtensionName;
+    j["fallback"] = fallback;
+    j["stream_bytes"] = stream.size();
+    j["bytes_out"] = bytes_out;
+    j["file_bytes_out"] = file_size(output);
+    j.print();
   } else {
     std::printf("%s -> %s: the stream (%zu bytes, %zu vertices, %zu triangles) as it is in one %s primitive%s, file "
                 "%zu bytes\n",

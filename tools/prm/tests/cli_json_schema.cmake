@@ -49,6 +49,8 @@ run_json(repair KEYS input output ${counts} seconds ARGS repair "${DATA}/open_bo
 run_json(reliefs KEYS input output ${counts} seconds ARGS reliefs "${DATA}/cube_quads.obj" -o "${WORK}/cube_reliefs.ply")
 run_json(remesh KEYS input output ${counts} distance.rms_rel distance.max_rel seconds
          ARGS remesh "${DATA}/cube_quads.obj" -o "${WORK}/cube_prm.ply" --grid-fraction 0.1)
+run_json(pack KEYS input output ${counts} bytes.total bits_per_vertex.total bytes.connectivity distance.rms_rel
+         distance.max_rel seconds n_o n_r ARGS pack "${DATA}/cube_quads.obj" -o "${WORK}/cube.prm" --grid-fraction 0.1)
 run_json(render KEYS input output ${counts} seconds ARGS render "${WORK}/tet.prm" -o "${WORK}/tet.png" --size 64x64)
 
 # render of a .prm draws the mesh: more than the background in the picture.
