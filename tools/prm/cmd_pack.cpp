@@ -121,6 +121,12 @@ void add_pack_command(CLI::App& root) {
     if (const size_t moved = r.remesh.prm.stats.quantized_moves)
       changes.push_back(std::to_string(moved) + " remeshed vertices moved by up to two quantization steps so that no "
                         "triangle loses its area");
+    if (const size_t collapsed = r.remesh.prm.stats.quantized_collapses)
+      changes.push_back(std::to_string(collapsed) + " remeshed edge(s) collapsed whose two ends the quantization put on "
+                        "one point (one vertex and two zero-area triangles each)");
+    if (const size_t turned = r.remesh.prm.stats.quantized_turned)
+      changes.push_back(std::to_string(turned) + " remeshed triangle(s) left facing away from the input by the "
+                        "quantization's last separation pass");
     write_file_bytes(opt->output, r.stream);
     if (!opt->keep_prm.empty())
       write_mesh(r.remesh.prm.mesh, opt->keep_prm, WriteOptions{MeshFormat::Ply, true, true, true});
