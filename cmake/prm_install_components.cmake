@@ -19,7 +19,9 @@ set(prm_gltf_private draco meshoptimizer)
 foreach(c common remesh pipeline gltf)
   set(lib prm_${c})
   add_library(prm::${c} ALIAS ${lib})
-  set_target_properties(${lib} PROPERTIES EXPORT_NAME ${c}
+  # INSTALL_RPATH: a shared library finds the ones it builds on beside it (a program's RUNPATH serves only the
+  # libraries it links itself, and the linker may drop e.g. libprm_pipeline from a program that calls prm_gltf only).
+  set_target_properties(${lib} PROPERTIES EXPORT_NAME ${c} INSTALL_RPATH "$ORIGIN"
     VERSION ${PROJECT_VERSION} SOVERSION ${PROJECT_VERSION_MAJOR}.${PROJECT_VERSION_MINOR})
   install(TARGETS ${lib} EXPORT prm-${c}-targets
     ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
