@@ -1,7 +1,9 @@
 #include "prm/pipeline/codec_bridge.h"
 
 #include <algorithm>
+#include <array>
 #include <string>
+#include <unordered_map>
 
 #include "prm/error.h"
 
@@ -97,6 +99,22 @@ size_t count_zero_area_triangles(const codec::DecodedMesh& decoded) {
     zero += d1[1] * d2[2] == d1[2] * d2[1] && d1[2] * d2[0] == d1[0] * d2[2] && d1[0] * d2[1] == d1[1] * d2[0];
   }
   return zero;
+}
+
+size_t count_coincident_vertices(const codec::DecodedMesh& decoded) {
+  struct PointHash {
+    size_t operator()(const std::array<uint32_t, 3>& p) const {
+      return (size_t{p[0]} * 73856093u) ^ (size_t{p[1]} * 19349663u) ^ (size_t{p[2]} * 83492791u);
+    }
+  };
+  std::unordered_map<std::array<uint32_t, 3>, uint32_t, PointHash> at;
+  const size_t nv = decoded.num_vertices();
+  at.reserve(nv);
+  for (size_t v = 0; v < nv; ++v)
+    ++at[{decoded.quantized[3 * v], decoded.quantized[3 * v + 1], decoded.quantized[3 * v + 2]}];
+  size_t coincident = 0;
+  for (const auto& [p, n] : at) coincident += n > 1 ? n : 0;
+  return coincident;
 }
 
 }  // namespace prm::pipeline

@@ -142,6 +142,16 @@ PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bit
     in_band_at_full_density = false;
     // The error grows with lambda: bisection for the last one that meets the target (in at most plan.lambda_rounds).
     int lo = -1, hi = static_cast<int>(std::size(kHeightLambdas));  // lo meets (-1: rounding), hi does not
+    // Heights chosen by rate and distortion must not put a vertex on another's point (issue 17): a lambda whose stream
+    // has more coincident vertices than the rounded heights' is refused like one that misses the target.
+    const size_t base_coincident = [&] {
+      const auto decoded = codec::decode(out.stream.data(), out.stream.size());
+      return decoded.ok() ? count_coincident_vertices(decoded.value) : size_t{0};
+    }();
+    auto coincident_of = [](const std::vector<uint8_t>& s) {
+      const auto decoded = codec::decode(s.data(), s.size());
+      return decoded.ok() ? count_coincident_vertices(decoded.value) : ~size_t{0};
+    };
     for (int round = 0; hi - lo > 1 && round < ctx.plan.lambda_rounds; ++round) {
       const int mid = (lo + hi) / 2;
       codec::PrmOptions o = po;
@@ -157,7 +167,7 @@ PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bit
       std::vector<uint8_t> stream;
       size_t zero_area = 0;
       const remesh::ErrorEstimate e = encode_and_measure(out.remesh.prm, o, &report, &stream, &zero_area);
-      if (e.rms > ro.target_error || zero_area > 0) {
+      if (e.rms > ro.target_error || zero_area > 0 || coincident_of(stream) > base_coincident) {
         hi = mid;
         continue;
       }

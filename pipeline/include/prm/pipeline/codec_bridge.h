@@ -31,4 +31,7 @@ Mesh to_mesh(const codec::DecodedMesh& decoded);
 // integer test, so no rounding decides it).
 size_t count_zero_area_triangles(const codec::DecodedMesh& decoded);
 
+// Vertices of a decoded stream whose quantized position another vertex has too (each such vertex counted).
+size_t count_coincident_vertices(const codec::DecodedMesh& decoded);
+
 }  // namespace prm::pipeline
