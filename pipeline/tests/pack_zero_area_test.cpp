@@ -41,7 +41,9 @@ void expect_clean_streams(const prm::Mesh& input, const std::string& name, bool 
     const prm::pipeline::StreamCheck c = prm::pipeline::check_decoded(decoded.value, &reference);
     EXPECT_EQ(c.zero_area, 0u);
     EXPECT_EQ(c.coincident, 0u);
-    if (real) EXPECT_EQ(r.remesh.prm.stats.quantized_turned, 0u);
+    if (real) {
+      EXPECT_EQ(r.remesh.prm.stats.quantized_turned, 0u);
+    }
     EXPECT_LE(r.remesh.error.rms, target.error);
     std::printf("%s at %.0e: %d bits, %zu bytes, %zu vertices (%zu moved, %zu edges collapsed, %zu turned by the "
                 "last pass), %zu decoded triangles facing away from the input\n",
