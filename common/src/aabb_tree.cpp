@@ -1,6 +1,8 @@
 #include "prm/aabb_tree.h"
 
-#include <emmintrin.h>  // SSE2: part of every x86-64
+#if defined(__SSE2__)
+#include <emmintrin.h>  // part of every x86-64
+#endif
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
@@ -288,6 +290,10 @@ inline double box_distance2(const float* lo, const float* hi, const Vec3& p) {
 // so the distances, and with them the search's order and answer, are bit for bit box_distance2's.
 inline void box_distance2_pair(const float* lo0, const float* hi0, const float* lo1, const float* hi1, const Vec3& p,
                                double& d0, double& d1) {
+#if !defined(__SSE2__)
+  d0 = box_distance2(lo0, hi0, p);
+  d1 = box_distance2(lo1, hi1, p);
+#else
   __m128d d2 = _mm_setzero_pd();
   const __m128d zero = _mm_setzero_pd();
   for (int k = 0; k < 3; ++k) {
@@ -299,6 +305,7 @@ inline void box_distance2_pair(const float* lo0, const float* hi0, const float* 
   }
   d0 = _mm_cvtsd_f64(d2);
   d1 = _mm_cvtsd_f64(_mm_unpackhi_pd(d2, d2));
+#endif
 }
 
 }  // namespace
