@@ -91,7 +91,7 @@ struct LineState {
   std::vector<const Progress*> running;
   std::vector<std::string> labels;
   std::vector<Clock::time_point> starts;
-  double fraction = -1;
+  std::vector<double> fractions;  // of each running Progress, 0..1
   // What was drawn.
   bool drawn = false;
   Clock::time_point last_emit;
@@ -115,7 +115,7 @@ ProgressStatus status_locked(const LineState& s, Clock::time_point now) {
   const std::string label = s.labels.empty() ? std::string() : s.labels.back();
   const Clock::time_point start = s.job ? s.job_start : (s.starts.empty() ? now : s.starts.front());
   st.elapsed_seconds = std::chrono::duration<double>(now - start).count();
-  st.fraction = s.labels.empty() ? -1 : s.fraction;
+  st.fraction = s.fractions.empty() ? -1 : s.fractions.back();
   if (s.job) {
     st.stage = s.stage;
     st.detail = label;
@@ -127,11 +127,13 @@ ProgressStatus status_locked(const LineState& s, Clock::time_point now) {
           std::min(kMaxAttemptShare, static_cast<double>(s.rounds_in_attempt) / std::max(1, s.rounds_this_attempt));
       st.eta_seconds = estimate_seconds_left(st.elapsed_seconds, s.attempt - 1 + within, s.attempts_planned);
     }
-  } else {
+  } else if (!s.fractions.empty()) {
+    // The time left of the outermost task (it holds the others), or of the innermost before the outermost moved.
     st.stage = label;
-    if (st.fraction > 0)
+    const size_t i = s.fractions.front() > 0 ? 0 : s.fractions.size() - 1;
+    if (s.fractions[i] > 0)
       st.eta_seconds =
-          estimate_seconds_left(std::chrono::duration<double>(now - s.starts.back()).count(), st.fraction, 1.0);
+          estimate_seconds_left(std::chrono::duration<double>(now - s.starts[i]).count(), s.fractions[i], 1.0);
   }
   return st;
 }
@@ -245,7 +247,7 @@ Progress::Progress(std::string label, size_t total)
   s.running.push_back(this);
   s.labels.push_back(label_);
   s.starts.push_back(start_);
-  s.fraction = 0;
+  s.fractions.push_back(0);
   emit_locked(s, s.job);  // a job's line shows the new detail at once
 }
 
@@ -264,8 +266,11 @@ void Progress::set(size_t done) {
 void Progress::update(bool force) {
   LineState& s = state();
   std::unique_lock<std::mutex> lock(s.mutex, std::try_to_lock);  // workers never wait for the line
-  if (!lock.owns_lock() || s.running.empty() || s.running.back() != this) return;
-  s.fraction = static_cast<double>(std::min<size_t>(done_, total_)) / static_cast<double>(total_);
+  if (!lock.owns_lock()) return;
+  const auto it = std::find(s.running.begin(), s.running.end(), this);
+  if (it == s.running.end()) return;
+  s.fractions[static_cast<size_t>(it - s.running.begin())] =
+      static_cast<double>(std::min<size_t>(done_, total_)) / static_cast<double>(total_);
   emit_locked(s, force);
 }
 
@@ -280,7 +285,7 @@ void Progress::finish() {
   s.running.erase(it);
   s.labels.erase(s.labels.begin() + static_cast<std::ptrdiff_t>(i));
   s.starts.erase(s.starts.begin() + static_cast<std::ptrdiff_t>(i));
-  s.fraction = -1;  // the outer one's share is shown again at its next advance
+  s.fractions.erase(s.fractions.begin() + static_cast<std::ptrdiff_t>(i));
   if (!s.job && s.running.empty()) clear_locked(s);
 }
 
@@ -308,6 +313,7 @@ ProgressJob::~ProgressJob() {
   s.labels.clear();
   s.running.clear();
   s.starts.clear();
+  s.fractions.clear();
   if (mode_locked(s) == ProgressMode::json) {
     ProgressStatus st = status_locked(s, Clock::now());
     st.eta_seconds = 0;
