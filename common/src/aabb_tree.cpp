@@ -1,5 +1,8 @@
 #include "prm/aabb_tree.h"
 
+#if defined(__SSE2__)
+#include <emmintrin.h>  // part of every x86-64
+#endif
 #include <tbb/parallel_for.h>
 #include <tbb/parallel_invoke.h>
 
@@ -243,20 +246,22 @@ void AabbTree::build(const std::vector<Vec3>& positions, const std::vector<Tri>&
   builder.build(0, 0, static_cast<uint32_t>(n), 0, box, cbox);
 
   const size_t used = builder.next.load();
-  nodes_.resize(used);
+  pairs_.assign((used + 1) / 2, NodePair{});
   for (size_t i = 0; i < used; ++i) {
-    Node& node = nodes_[i];
+    NodePair& pair = pairs_[i / 2];
+    const size_t side = i % 2;
     for (int k = 0; k < 3; ++k) {
-      node.lo[k] = boxes[6 * i + k];
-      node.hi[k] = boxes[6 * i + 3 + k];
+      pair.lo[k][side] = boxes[6 * i + k];
+      pair.hi[k][side] = boxes[6 * i + 3 + k];
     }
-    node.first = links[2 * i];
-    node.count = links[2 * i + 1];
+    pair.first[side] = links[2 * i];
+    pair.count[side] = links[2 * i + 1];
   }
-  if (used > 1) {  // the unused slot 1 gets an empty box so that nothing ever enters it
-    nodes_[1] = Node{{HUGE_VALF, HUGE_VALF, HUGE_VALF}, {-HUGE_VALF, -HUGE_VALF, -HUGE_VALF}, 0, 0};
+  for (int k = 0; k < 3; ++k) {  // the unused slot 1 gets an empty box so that nothing ever enters it
+    pairs_[0].lo[k][1] = HUGE_VALF;
+    pairs_[0].hi[k][1] = -HUGE_VALF;
   }
-  nodes_.shrink_to_fit();
+  pairs_[0].first[1] = pairs_[0].count[1] = 0;
 
   triangles_.resize(n);
   slot_.resize(n);
@@ -280,6 +285,33 @@ inline double box_distance2(const float* lo, const float* hi, const Vec3& p) {
     d2 += e * e;
   }
   return d2;
+}
+
+// box_distance2 of the two boxes of a pair (lo[axis][side], hi[axis][side]) at once, lane 0 side 0: the same
+// operations in the same order on each lane (packed SSE2 is IEEE double as the scalar code is; max of -0 and +0 may
+// pick the other zero, whose square is the same), so the distances, and with them the search's order and answer,
+// are bit for bit box_distance2's.
+inline void box_distance2_pair(const float (&lo2)[3][2], const float (&hi2)[3][2], const Vec3& p, double& d0,
+                               double& d1) {
+#if !defined(__SSE2__)
+  const float lo0[3] = {lo2[0][0], lo2[1][0], lo2[2][0]}, hi0[3] = {hi2[0][0], hi2[1][0], hi2[2][0]};
+  const float lo1[3] = {lo2[0][1], lo2[1][1], lo2[2][1]}, hi1[3] = {hi2[0][1], hi2[1][1], hi2[2][1]};
+  d0 = box_distance2(lo0, hi0, p);
+  d1 = box_distance2(lo1, hi1, p);
+#else
+  __m128d d2 = _mm_setzero_pd();
+  const __m128d zero = _mm_setzero_pd();
+  for (int k = 0; k < 3; ++k) {
+    // Both sides' floats in one 8-byte load (_mm_loadl_epi64 may alias anything), widened exactly to doubles.
+    const __m128d lo = _mm_cvtps_pd(_mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(lo2[k]))));
+    const __m128d hi = _mm_cvtps_pd(_mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(hi2[k]))));
+    const __m128d pk = _mm_set1_pd(p[k]);
+    const __m128d e = _mm_max_pd(_mm_max_pd(_mm_sub_pd(lo, pk), _mm_sub_pd(pk, hi)), zero);
+    d2 = _mm_add_pd(d2, _mm_mul_pd(e, e));
+  }
+  d0 = _mm_cvtsd_f64(d2);
+  d1 = _mm_cvtsd_f64(_mm_unpackhi_pd(d2, d2));
+#endif
 }
 
 }  // namespace
@@ -307,7 +339,7 @@ void AabbTree::closest(const Vec3& p, Hit& hint) const {
 
 void AabbTree::search(const Vec3& p, Hit& hit, double best) const {
   hit.distance2 = best;
-  if (nodes_.empty()) return;
+  if (pairs_.empty()) return;
 
   struct Entry {
     uint32_t node;
@@ -316,12 +348,18 @@ void AabbTree::search(const Vec3& p, Hit& hit, double best) const {
   Entry stack[kStackSize];
   int top = 0;
   uint32_t current = 0;
-  if (box_distance2(nodes_[0].lo, nodes_[0].hi, p) >= best) return;
+  {
+    const NodePair& root = pairs_[0];
+    const float lo[3] = {root.lo[0][0], root.lo[1][0], root.lo[2][0]};
+    const float hi[3] = {root.hi[0][0], root.hi[1][0], root.hi[2][0]};
+    if (box_distance2(lo, hi, p) >= best) return;
+  }
   for (;;) {
-    const Node& node = nodes_[current];
+    const NodePair& pair = pairs_[current / 2];
+    const uint32_t side = current % 2, first = pair.first[side], count = pair.count[side];
     bool descend = false;
-    if (node.count > 0) {
-      for (uint32_t k = node.first, end = node.first + node.count; k < end; ++k) {
+    if (count > 0) {
+      for (uint32_t k = first, end = first + count; k < end; ++k) {
         const Triangle& t = triangles_[k];
         const Vec3 q = closest_point_on_triangle(p, t.a, t.b, t.c);
         const double d2 = norm2(p - q);
@@ -333,10 +371,10 @@ void AabbTree::search(const Vec3& p, Hit& hit, double best) const {
       }
       if (best == 0) break;
     } else {
-      const Node& l = nodes_[node.first];
-      const Node& r = nodes_[node.first + 1];
-      double dl = box_distance2(l.lo, l.hi, p), dr = box_distance2(r.lo, r.hi, p);
-      uint32_t near = node.first, far = node.first + 1;
+      const NodePair& children = pairs_[first / 2];
+      double dl, dr;
+      box_distance2_pair(children.lo, children.hi, p, dl, dr);
+      uint32_t near = first, far = first + 1;
       if (dr < dl) {
         std::swap(dl, dr);
         std::swap(near, far);
@@ -364,7 +402,7 @@ void AabbTree::search(const Vec3& p, Hit& hit, double best) const {
 }
 
 std::array<Vec3, 2> AabbTree::bounds() const {
-  if (nodes_.empty()) return {Vec3{0, 0, 0}, Vec3{0, 0, 0}};
+  if (pairs_.empty()) return {Vec3{0, 0, 0}, Vec3{0, 0, 0}};
   Box box;
   for (const Triangle& t : triangles_) {
     box.add(t.a);
@@ -375,16 +413,17 @@ std::array<Vec3, 2> AabbTree::bounds() const {
 }
 
 int AabbTree::depth() const {
-  if (nodes_.empty()) return 0;
+  if (pairs_.empty()) return 0;
   int deepest = 0;
   std::vector<std::pair<uint32_t, int>> todo{{0u, 1}};
   while (!todo.empty()) {
     const auto [n, d] = todo.back();
     todo.pop_back();
     deepest = std::max(deepest, d);
-    if (nodes_[n].count == 0) {
-      todo.push_back({nodes_[n].first, d + 1});
-      todo.push_back({nodes_[n].first + 1, d + 1});
+    const NodePair& pair = pairs_[n / 2];
+    if (pair.count[n % 2] == 0) {
+      todo.push_back({pair.first[n % 2], d + 1});
+      todo.push_back({pair.first[n % 2] + 1, d + 1});
     }
   }
   return deepest;

@@ -12,6 +12,7 @@
 #include "prm/error.h"
 #include "prm/mesh_validate.h"
 #include "prm/metro_distance.h"
+#include "prm/progress.h"
 #include "prm/pipeline/codec_bridge.h"
 #include "prm/remesh/lattice.h"
 
@@ -26,6 +27,12 @@ double seconds_since(std::chrono::steady_clock::time_point t0) {
 // Sparse estimates of a grid's error in [kSparseBand[0], kSparseBand[1]] x the target are measured again at full
 // density (the lambda bisection keeps the sparse ones: the result's full-density check corrects it).
 constexpr double kSparseBand[2] = {0.97, 1.08};
+
+// For the progress line's estimate of the time left: the attempts of the exhaustive search (12, 11, 10 bits and the
+// three kStepScales, as on the paper's models) and the grid rounds of one attempt's remesh (its lambda bisection adds
+// EffortPlan::lambda_rounds).
+constexpr int kExpectedExhaustiveAttempts = 6;
+constexpr int kExpectedGridRounds = 3;
 
 // What one search shares across its attempts: the repaired input, its relief layout, and the Metro references of the
 // search (plan.search_samples_per_face) and of the report (Metro's ten per face, or PackOptions::metro_samples).
@@ -44,6 +51,7 @@ PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bit
   const Mesh& source = ctx.source;
   const MetroReference& reference = ctx.search;
   PackResult out;
+  ProgressJob::stage("remesh");
   auto t0 = std::chrono::steady_clock::now();
   remesh::RemeshOptions ro;
   ro.layout = &ctx.layout;
@@ -112,6 +120,7 @@ PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bit
     return against ? measure_with(*against, mesh) : measure(mesh);
   };
   auto error = [&](const remesh::PrmMesh& prm) {
+    ProgressJob::advance_round();
     if (po.height_lambda > 0) return encode_and_measure(prm, po, nullptr, nullptr);
     const Mesh& candidate = prm.mesh;
     Mesh q;
@@ -139,6 +148,8 @@ PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bit
   // The error left below the target buys smaller residuals: the largest lambda that still meets it.
   if (options.optimize_heights && options.height_lambda <= 0 && options.target_error > 0) {
     const auto t1 = std::chrono::steady_clock::now();
+    ProgressJob::stage("heights");
+    ProgressJob::rounds_left(ctx.plan.lambda_rounds + 1);  // and the check at full density
     in_band_at_full_density = false;
     // The error grows with lambda: bisection for the last one that meets the target (in at most plan.lambda_rounds).
     int lo = -1, hi = static_cast<int>(std::size(kHeightLambdas));  // lo meets (-1: rounding), hi does not
@@ -154,6 +165,7 @@ PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bit
     };
     for (int round = 0; hi - lo > 1 && round < ctx.plan.lambda_rounds; ++round) {
       const int mid = (lo + hi) / 2;
+      ProgressJob::advance_round();
       codec::PrmOptions o = po;
       o.height_tolerance = kHeightTolerance;
       o.height_lambda = kHeightLambdas[mid];
@@ -204,6 +216,8 @@ PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bit
   // the target, smaller lambdas (then rounding) are tried at full density; `measured` false if none meets it.
   if (&ctx.search != &ctx.full && options.target_error > 0 && zero_area == 0) {
     const double target = kQuantizationMargin * options.target_error;
+    ProgressJob::stage("check");
+    ProgressJob::rounds_left(1);
     auto full_error = [&](const codec::PrmOptions& o, std::vector<uint8_t>* stream, codec::EncodeReport* report) {
       size_t za = 0;
       const remesh::ErrorEstimate e = encode_and_measure(out.remesh.prm, o, report, stream, &za, &ctx.full);
@@ -284,6 +298,14 @@ EffortPlan effort_plan(int effort) {
 PackResult pack(const Mesh& input, const PackOptions& options) {
   auto t0 = std::chrono::steady_clock::now();
   check_remesh_range(input);  // before anything squares a length
+  // The effort applies to the search of the step; a given bit depth or step scale is searched as it always was.
+  const EffortPlan plan =
+      effort_plan(options.bits > 0 || options.step_scale > 0 ? kMaxEffort : (effort_plan(options.effort), options.effort));
+  const bool one_attempt = options.bits > 0 || options.target_error <= 0;
+  const bool rate_distortion = options.optimize_heights && options.height_lambda <= 0 && options.target_error > 0;
+  ProgressJob progress(one_attempt ? 1 : plan.exhaustive ? kExpectedExhaustiveAttempts : plan.steps,
+                       kExpectedGridRounds + (rate_distortion ? plan.lambda_rounds : 0));
+  ProgressJob::stage("repair");
   // Paper §2: the remesher needs a closed, consistently oriented manifold; the bunny's holes are closed by fans first.
   const MeshReport check = validate_mesh(input);
   Mesh closed;
@@ -292,9 +314,7 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
   if (repaired) closed = repair_mesh(input, &repair);  // throws InputError when it cannot be made a closed manifold
   const Mesh& source = repaired ? closed : input;
   const double seconds_repair = seconds_since(t0);
-  // The effort applies to the search of the step; a given bit depth or step scale is searched as it always was.
-  const EffortPlan plan =
-      effort_plan(options.bits > 0 || options.step_scale > 0 ? kMaxEffort : (effort_plan(options.effort), options.effort));
+  ProgressJob::stage("reliefs");
   MetroOptions mo;
   mo.samples = options.metro_samples;  // 0: Metro's ten per face, as `prm compare` measures
   const MetroReference reference(source, mo);
@@ -311,9 +331,11 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
   const SearchContext ctx{source, layout, sparse ? *sparse_reference : reference, reference, plan};
   const SearchContext full_ctx{source, layout, reference, reference, plan};
   size_t rounds = 0;
+  int attempts = 0;
   // One bit depth and step scale; repeated with full-density Metro when the sparse samples promised too much.
   auto pack_one = [&](int bits, double scale, double initial_grid) {
     bool measured = true;
+    ProgressJob::attempt(++attempts);
     PackResult r = pack_at(ctx, options, bits, scale, initial_grid, &measured);
     rounds += r.remesh.search.size();
     if (!measured) {
@@ -325,9 +347,10 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
 
   PackResult out;
   const double fixed_scale = options.step_scale > 0 ? options.step_scale : 1.0;
-  if (options.bits > 0 || options.target_error <= 0) {
+  if (one_attempt) {
     out = pack_one(options.bits > 0 ? options.bits : 12, fixed_scale, 0);
     out.tried.push_back({out.bits, out.step_scale, out.stream.size()});
+    ProgressJob::best_bytes(out.stream.size());
   } else {
     // The bit depth is part of the search: fewer bits make every height cheaper and add quantization error, which a
     // finer grid must buy back. Each grid search starts from the previous grid size.
@@ -352,6 +375,7 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
       out = std::move(r);
       out.tried = std::move(tried);
       have = true;
+      ProgressJob::best_bytes(out.stream.size());
       return Outcome::smaller;
     };
     if (plan.exhaustive) {

@@ -1,5 +1,7 @@
 // prm: the command-line tool. One sub-command per cmd_<name>.cpp; see commands.h.
 #include <cmath>
+#include <unistd.h>
+
 #include <cstdio>
 #include <exception>
 #include <new>
@@ -9,6 +11,7 @@
 #include "exit_codes.h"
 #include "json_report.h"
 #include "prm/error.h"
+#include "prm/progress.h"
 
 namespace {
 
@@ -31,15 +34,29 @@ void refuse_non_finite_numbers(CLI::App& app) {
   for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) refuse_non_finite_numbers(*sub);
 }
 
-// `--json` anywhere on the command line: errors are then reported as one JSON object on stderr as well.
-bool wants_json(int argc, char** argv) {
+// `flag` anywhere on the command line (before parsing: it decides how errors and progress are reported).
+bool has_flag(int argc, char** argv, const char* flag) {
   for (int i = 1; i < argc; ++i)
-    if (std::string(argv[i]) == "--json") return true;
+    if (std::string(argv[i]) == flag) return true;
   return false;
+}
+
+// --quiet: no progress line and no report on stdout (a --json report is still printed: it was asked for);
+// --progress: the progress line even when stderr is not a terminal, there as JSON lines (docs/cli-json.md
+// "Progress"); neither: the line on a terminal only.
+void set_up_progress(bool quiet, bool progress, bool json) {
+  if (quiet) {
+    prm::Progress::set_mode(prm::ProgressMode::off);
+    if (!json && !std::freopen("/dev/null", "w", stdout)) std::fclose(stdout);
+  } else if (progress) {
+    prm::Progress::set_mode(isatty(STDERR_FILENO) ? prm::ProgressMode::terminal : prm::ProgressMode::json,
+                            prm::cli::kJsonSchemaVersion);
+  }
 }
 
 // One error: the text line on stderr, and with --json the error object (docs/cli-json.md "Errors") after it.
 int report_error(bool json, int code, const char* name, const char* prefix, const std::string& message) {
+  prm::Progress::clear();
   std::fprintf(stderr, "prm: %s: %s\n", prefix, message.c_str());
   if (json) std::fprintf(stderr, "%s\n", prm::cli::error_json(code, name, message).c_str());
   return code;
@@ -58,6 +75,11 @@ int main(int argc, char** argv) {
       "file in every command). With --json, an error is also one JSON object on stderr (docs/cli-json.md).\n"
       "Run `prm <command> --help` for the options of a command.");
   app.set_version_flag("--version", "prm 0.1.0");
+  auto* quiet = app.add_flag("--quiet", "Print nothing but errors: no progress line, no report on stdout (a --json "
+                                        "report is still printed)");
+  auto* progress = app.add_flag("--progress", "Show the progress line even when stderr is not a terminal: there as "
+                                              "JSON lines on stderr (docs/cli-json.md \"Progress\")");
+  quiet->excludes(progress);
 
   add_info_command(app);
   add_compare_command(app);
@@ -71,7 +93,8 @@ int main(int argc, char** argv) {
   add_unpack_command(app);
   refuse_non_finite_numbers(app);
 
-  const bool json = wants_json(argc, argv);
+  const bool json = has_flag(argc, argv, "--json");
+  set_up_progress(has_flag(argc, argv, "--quiet"), has_flag(argc, argv, "--progress"), json);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

@@ -50,17 +50,19 @@ class AabbTree {
   // Box of all triangles: {min corner, max corner}; both zero for an empty tree.
   std::array<Vec3, 2> bounds() const;
   // Number of nodes and depth, for tests and tuning.
-  size_t num_nodes() const { return nodes_.size(); }
+  size_t num_nodes() const { return 2 * pairs_.size(); }
   int depth() const;
 
  private:
-  // 32 bytes; the two children of an inner node are adjacent (left at `first`, right at `first + 1`) and sit in
-  // one 64-byte line. Boxes are floats rounded outwards, so they always contain the double-precision triangles.
-  struct Node {
-    float lo[3];
-    float hi[3];
-    uint32_t first;  // leaf: first triangle in triangles_; inner: left child
-    uint32_t count;  // leaf: number of triangles (> 0); inner: 0
+  // The nodes two by two, 64 bytes (one cache line): node i is side i % 2 of pairs_[i / 2]. Node 0 is the root (its
+  // side 1 an empty box nothing enters); the children of an inner node are nodes 2j and 2j + 1, one pair, whose
+  // boxes are stored [axis][side] so that one 8-byte load gives an axis of both. Boxes are floats rounded outwards,
+  // so they always contain the double-precision triangles.
+  struct alignas(64) NodePair {
+    float lo[3][2];
+    float hi[3][2];
+    uint32_t first[2];  // leaf: first triangle in triangles_; inner: left child (even)
+    uint32_t count[2];  // leaf: number of triangles (> 0); inner: 0
   };
   struct Triangle {
     Vec3 a, b, c;
@@ -70,7 +72,7 @@ class AabbTree {
   // Depth-first search for a point closer than sqrt(best2); updates hit when it finds one.
   void search(const Vec3& p, Hit& hit, double best2) const;
 
-  std::vector<Node> nodes_;
+  std::vector<NodePair> pairs_;
   std::vector<Triangle> triangles_;  // in leaf order
   std::vector<uint32_t> ids_;        // triangles_[k] is the mesh's triangle ids_[k]
   std::vector<uint32_t> slot_;       // the inverse: triangle f is triangles_[slot_[f]]
