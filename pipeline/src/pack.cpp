@@ -104,10 +104,11 @@ PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bit
     return full;
   };
   // The stream of a candidate with options o, and the error of its decoded mesh.
-  // zero_area: the decoded mesh's triangles of zero area (the chosen heights can put a corner on a line).
+  // zero_area: the decoded mesh's triangles of zero area (the chosen heights can put a corner on a line);
+  // coincident: its vertices that share their point with another.
   auto encode_and_measure = [&](const remesh::PrmMesh& prm, const codec::PrmOptions& o, codec::EncodeReport* report,
                                 std::vector<uint8_t>* stream, size_t* zero_area = nullptr,
-                                const MetroReference* against = nullptr) {
+                                const MetroReference* against = nullptr, size_t* coincident = nullptr) {
     auto encoded = encode_prm_mesh(prm, report, o);
     if (!encoded.ok())
       throw InputError("the piecewise regular mesh could not be encoded (a remesher or codec bug): " +
@@ -115,6 +116,7 @@ PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bit
     auto decoded = codec::decode(encoded.value.data(), encoded.value.size());
     if (!decoded.ok()) throw InputError("the encoder's stream does not decode (a codec bug): " + decoded.status.message);
     if (zero_area) *zero_area = count_zero_area_triangles(decoded.value);
+    if (coincident) *coincident = count_coincident_vertices(decoded.value);
     const Mesh mesh = to_mesh(decoded.value);
     if (stream) *stream = std::move(encoded.value);
     return against ? measure_with(*against, mesh) : measure(mesh);
@@ -159,10 +161,6 @@ PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bit
       const auto decoded = codec::decode(out.stream.data(), out.stream.size());
       return decoded.ok() ? count_coincident_vertices(decoded.value) : size_t{0};
     }();
-    auto coincident_of = [](const std::vector<uint8_t>& s) {
-      const auto decoded = codec::decode(s.data(), s.size());
-      return decoded.ok() ? count_coincident_vertices(decoded.value) : ~size_t{0};
-    };
     for (int round = 0; hi - lo > 1 && round < ctx.plan.lambda_rounds; ++round) {
       const int mid = (lo + hi) / 2;
       ProgressJob::advance_round();
@@ -177,9 +175,10 @@ PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bit
       }
       codec::EncodeReport report;
       std::vector<uint8_t> stream;
-      size_t zero_area = 0;
-      const remesh::ErrorEstimate e = encode_and_measure(out.remesh.prm, o, &report, &stream, &zero_area);
-      if (e.rms > ro.target_error || zero_area > 0 || coincident_of(stream) > base_coincident) {
+      size_t zero_area = 0, coincident = 0;
+      const remesh::ErrorEstimate e =
+          encode_and_measure(out.remesh.prm, o, &report, &stream, &zero_area, nullptr, &coincident);
+      if (e.rms > ro.target_error || zero_area > 0 || coincident > base_coincident) {
         hi = mid;
         continue;
       }
