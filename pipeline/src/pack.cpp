@@ -14,6 +14,7 @@
 #include "prm/metro_distance.h"
 #include "prm/progress.h"
 #include "prm/pipeline/codec_bridge.h"
+#include "prm/pipeline/pack_general.h"
 #include "prm/remesh/lattice.h"
 
 namespace prm::pipeline {
@@ -294,9 +295,11 @@ EffortPlan effort_plan(int effort) {
   return p;
 }
 
-PackResult pack(const Mesh& input, const PackOptions& options) {
+namespace {
+
+// PackMode::prm. input_reference: the input's Metro reference (options.metro_samples), used when no repair is needed.
+PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroReference* input_reference) {
   auto t0 = std::chrono::steady_clock::now();
-  check_remesh_range(input);  // before anything squares a length
   // The effort applies to the search of the step; a given bit depth or step scale is searched as it always was.
   const EffortPlan plan =
       effort_plan(options.bits > 0 || options.step_scale > 0 ? kMaxEffort : (effort_plan(options.effort), options.effort));
@@ -316,7 +319,9 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
   ProgressJob::stage("reliefs");
   MetroOptions mo;
   mo.samples = options.metro_samples;  // 0: Metro's ten per face, as `prm compare` measures
-  const MetroReference reference(source, mo);
+  std::unique_ptr<MetroReference> own_reference;
+  if (repaired || !input_reference) own_reference = std::make_unique<MetroReference>(source, mo);
+  const MetroReference& reference = own_reference ? *own_reference : *input_reference;
   // The search's own, sparser samples (only where they are fewer than the report's).
   MetroOptions so = mo;
   so.samples_per_face = plan.search_samples_per_face;
@@ -441,6 +446,131 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
   out.repair = repair;
   if (repaired) out.repaired_input = std::move(closed);
   return out;
+}
+
+}  // namespace
+
+PackResult pack(const Mesh& input, const PackOptions& options) {
+  check_remesh_range(input);  // before anything squares a length
+  const bool has_target = options.target_error > 0;
+  const PackMode mode = options.mode == PackMode::automatic && !has_target ? PackMode::prm : options.mode;
+  // Both candidates are measured against the target with the PRM search's margin.
+  const double target = kQuantizationMargin * options.target_error;
+  MetroOptions mo;
+  mo.samples = options.metro_samples;
+  std::unique_ptr<MetroReference> input_reference;
+  if (mode != PackMode::prm) input_reference = std::make_unique<MetroReference>(input, mo);
+
+  // The general candidate: the input as it comes (with its boundaries), cheap, made first.
+  PackResult::Candidate general;
+  GeneralPack general_pack;
+  if (mode != PackMode::prm) {
+    const auto t0 = std::chrono::steady_clock::now();
+    try {
+      general_pack = pack_general(input, *input_reference, has_target ? target : 0, options.bits);
+      general.made = true;
+      general.bytes = general_pack.stream.size();
+      general.vertices = general_pack.report.vertices;
+      general.bits = general_pack.bits;
+      general.rms = general_pack.rms;
+      general.max = general_pack.max;
+    } catch (const InputError& e) {
+      if (mode == PackMode::general) throw;
+      general.refused = e.what();
+    } catch (const remesh::TargetNotReached& e) {
+      if (mode == PackMode::general) throw;
+      general.refused = e.what();
+    }
+    general.seconds = seconds_since(t0);
+  }
+  auto general_result = [&](std::string reason) {
+    PackResult out;
+    out.stream = std::move(general_pack.stream);
+    out.report = std::move(general_pack.report);
+    out.bits = general_pack.bits;
+    out.step_scale = 1;
+    out.remesh.error = remesh::ErrorEstimate{general.rms, general.max};
+    out.seconds_general = general.seconds;
+    for (const GeneralPack::Trial& t : general_pack.tried) out.tried.push_back({t.bits, 1.0, t.bytes});
+    out.mode = PackMode::general;
+    out.mode_reason = std::move(reason);
+    out.general_candidate = general;
+    out.input_vertices = input.num_vertices();
+    return out;
+  };
+  if (mode == PackMode::general) return general_result("--mode general");
+
+  // The piecewise regular candidate.
+  PackResult::Candidate prm;
+  PackResult out;
+  const auto t0 = std::chrono::steady_clock::now();
+  try {
+    out = pack_prm(input, options, input_reference.get());
+    prm.made = true;
+  } catch (const remesh::TargetNotReached& e) {
+    if (mode == PackMode::prm || !general.made) {
+      if (mode == PackMode::prm) throw;
+      throw remesh::TargetNotReached(std::string(e.what()) + "; the general path: " + general.refused);
+    }
+    prm.refused = e.what();
+  } catch (const InputError& e) {
+    if (mode == PackMode::prm || !general.made) {
+      if (mode == PackMode::prm) throw;
+      throw InputError(std::string(e.what()) + "; the general path: " + general.refused);
+    }
+    prm.refused = e.what();
+  }
+  prm.seconds = seconds_since(t0);
+  if (prm.made) {
+    prm.bytes = out.stream.size();
+    prm.vertices = out.report.vertices;
+    prm.bits = out.bits;
+    prm.rms = out.remesh.error.rms;
+    prm.max = out.remesh.error.max;
+  }
+  auto bytes_rms = [](const PackResult::Candidate& c) {
+    return std::to_string(c.bytes) + " B at " + std::to_string(c.bits) + " bits, RMS " + std::to_string(c.rms);
+  };
+  if (mode == PackMode::automatic && !prm.made) {
+    PackResult g = general_result("auto: no piecewise regular mesh could be made (" + prm.refused + ")");
+    g.prm_candidate = prm;
+    return g;
+  }
+  if (mode == PackMode::automatic && general.made && general.bytes < prm.bytes) {
+    std::string reason = "auto: the general stream (" + bytes_rms(general) + ") is smaller than the piecewise "
+                         "regular one (" + bytes_rms(prm) + ")";
+    if (out.repaired)
+      reason += "; the piecewise regular mesh needed repair (" + std::to_string(out.repair.holes_filled) +
+                " hole(s) filled), the general stream codes the input as it is";
+    PackResult g = general_result(std::move(reason));
+    g.prm_candidate = prm;
+    g.seconds_repair = out.seconds_repair;
+    g.seconds_remesh = out.seconds_remesh;
+    return g;
+  }
+  out.mode = PackMode::prm;
+  if (mode == PackMode::prm)
+    out.mode_reason = options.mode == PackMode::prm ? "--mode prm"
+                                                    : "auto without a target error (a grid was given): prm";
+  else if (general.made)
+    out.mode_reason = "auto: the piecewise regular stream (" + bytes_rms(prm) + ") is not larger than the general "
+                      "one (" + bytes_rms(general) + ")";
+  else
+    out.mode_reason = "auto: the general path cannot code the input (" + general.refused + ")";
+  out.prm_candidate = prm;
+  out.general_candidate = general;
+  out.seconds_general = general.seconds;
+  out.input_vertices = input.num_vertices();
+  return out;
+}
+
+const char* pack_mode_name(PackMode mode) {
+  switch (mode) {
+    case PackMode::prm: return "prm";
+    case PackMode::general: return "general";
+    case PackMode::automatic: return "auto";
+  }
+  return "?";
 }
 
 }  // namespace prm::pipeline

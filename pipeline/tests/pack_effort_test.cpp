@@ -42,6 +42,7 @@ TEST_P(PackEffortLevel, MeetsTheTarget) {
   PackOptions o;
   o.target_error = target;
   o.effort = effort;
+  o.mode = prm::pipeline::PackMode::prm;  // the effort levels of the remesher's search
   const prm::pipeline::PackResult r = prm::pipeline::pack(input, o);
   ASSERT_FALSE(r.tried.empty());
   EXPECT_LE(r.remesh.error.rms, prm::pipeline::kQuantizationMargin * target);

@@ -178,6 +178,7 @@ TEST(Pack, GridFromTargetError) {
   PackOptions o;
   o.target_error = 5e-4;
   o.effort = prm::pipeline::kMaxEffort;
+  o.mode = prm::pipeline::PackMode::prm;  // the remesher's path
   const prm::pipeline::PackResult r = prm::pipeline::pack(input, o);
   EXPECT_LE(r.remesh.error.rms, prm::pipeline::kQuantizationMargin * 5e-4);
   expect_exact_round_trip(r);
@@ -208,6 +209,7 @@ TEST(Pack, ChosenHeightsMeetTheTargetInASmallerStream) {
   o.target_error = 5e-4;
   o.bits = 11;
   o.optimize_heights = false;
+  o.mode = prm::pipeline::PackMode::prm;  // the remesher's path
   const prm::pipeline::PackResult rounded = prm::pipeline::pack(input, o);
   EXPECT_EQ(rounded.codec_options.height_lambda, 0.0);
   o.optimize_heights = true;
@@ -251,6 +253,7 @@ TEST(Pack, StepScaleSetsTheStep) {
   o.target_error = 5e-4;
   o.bits = 10;
   o.step_scale = 1.3;
+  o.mode = prm::pipeline::PackMode::prm;  // the remesher's path
   const prm::pipeline::PackResult fixed = prm::pipeline::pack(input, o);
   EXPECT_EQ(fixed.step_scale, 1.3);
   ASSERT_EQ(fixed.tried.size(), 1u);

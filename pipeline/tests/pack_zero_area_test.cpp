@@ -35,6 +35,7 @@ void expect_clean_streams(const prm::Mesh& input, const std::string& name, bool 
     o.target_error = target.error;
     o.bits = target.bits;
     o.step_scale = 1;
+    o.mode = prm::pipeline::PackMode::prm;  // the remesher's path
     const prm::pipeline::PackResult r = prm::pipeline::pack(input, o);
     const auto decoded = prm::codec::decode(r.stream.data(), r.stream.size());
     ASSERT_TRUE(decoded.ok()) << decoded.status.message;

@@ -1,6 +1,7 @@
-// prm pack IN -o OUT.prm (--target-error E | --grid G | --grid-fraction F) [--tau T] [--bits B] [--json]:
-// the main job. Close holes and fix what repair can fix, remesh into a piecewise regular mesh (paper §2), encode it
-// (spec/prm-format.md), report sizes, error and times.
+// prm pack IN -o OUT.prm (--target-error E | --grid G | --grid-fraction F) [--mode prm|general|auto] [--tau T]
+// [--bits B] [--json]: the main job. Close holes and fix what repair can fix, remesh into a piecewise regular mesh
+// (paper §2), encode it (spec/prm-format.md); with --mode auto also code the input itself through the general path and
+// keep the smaller stream; report which, sizes, error and times.
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
@@ -23,7 +24,7 @@ void add_pack_command(CLI::App& root) {
     std::string input, output, keep_prm;
     double target = 0, grid = 0, grid_fraction = 0, tau = 0.2, lambda = 0, step_scale = 0;
     int bits = 0, sweeps = 4, effort = pipeline::kDefaultEffort;
-    std::string max_version = "1.4";
+    std::string max_version = "1.4", mode = "auto";
     size_t samples = 0;
     bool json = false, no_fit = false, round_heights = false, fallback = false;
     double error_flip_weight = remesh::kDefaultErrorFlipWeight;
@@ -57,6 +58,13 @@ void add_pack_command(CLI::App& root) {
                   "search over bit depths and step scales; bench/README.md 'pack effort' measures time against bytes). "
                   "Default " + std::to_string(pipeline::kDefaultEffort))
       ->check(CLI::Range(pipeline::kMinEffort, pipeline::kMaxEffort));
+  cmd->add_option("--mode", opt->mode,
+                  "prm: remesh and code the piecewise regular mesh; general: code the input itself through the general "
+                  "path (format 1.0, as `prm encode`) at the smallest bit depth (8..20) that meets --target-error; auto "
+                  "(default): make both and keep the smaller stream (prm when the general path refuses the input, "
+                  "general when no piecewise regular mesh meets the target; prm without --target-error). The report "
+                  "says which and why")
+      ->check(CLI::IsMember({"prm", "general", "auto"}));
   cmd->add_option("--samples", opt->samples, "Metro samples per surface for the target-error search (default 0: Metro's ten per face)");
   cmd->add_option("--keep-prm", opt->keep_prm, "Also write the piecewise regular mesh (PLY with lattice labels)");
   add_remesher_options(cmd, opt->error_flip_weight, opt->no_fit);
@@ -100,6 +108,10 @@ void add_pack_command(CLI::App& root) {
     po.height_sweeps = opt->sweeps;
     po.max_minor = opt->max_version[2] - '0';
     po.effort = opt->effort;
+    po.mode = opt->mode == "prm" ? pipeline::PackMode::prm
+              : opt->mode == "general" ? pipeline::PackMode::general : pipeline::PackMode::automatic;
+    if (po.mode == pipeline::PackMode::general && opt->target <= 0 && opt->bits <= 0)
+      throw CLI::ValidationError("pack", "--mode general needs --target-error or --bits");
     if (is_gltf_file_path(opt->output)) return run_gltf_pack(opt->input, opt->output, po, opt->fallback, opt->json);
     note_gltf_to_prm(opt->input);
     ReadReport read;
@@ -127,21 +139,42 @@ void add_pack_command(CLI::App& root) {
     if (const size_t turned = r.remesh.prm.stats.quantized_turned)
       changes.push_back(std::to_string(turned) + " remeshed triangle(s) left facing away from the input by the "
                         "quantization's last separation pass");
+    const bool general = r.mode == pipeline::PackMode::general;
+    std::vector<std::string> notes = r.repair.notes;
     write_file_bytes(opt->output, r.stream);
-    if (!opt->keep_prm.empty())
-      write_mesh(r.remesh.prm.mesh, opt->keep_prm, WriteOptions{MeshFormat::Ply, true, true, true});
+    if (!opt->keep_prm.empty()) {
+      if (general)
+        notes.push_back("--keep-prm: nothing written, the stream codes the input itself (no piecewise regular mesh)");
+      else
+        write_mesh(r.remesh.prm.mesh, opt->keep_prm, WriteOptions{MeshFormat::Ply, true, true, true});
+    }
 
     const codec::EncodeReport& rep = r.report;
     const auto& s = r.remesh.prm.stats;
     const double n_r = rep.vertices ? rep.vertices : 1;
+    const double n_o = static_cast<double>(input.num_vertices());
     const double g = static_cast<double>(r.remesh.prm.lattice.A) * r.remesh.prm.frame.step;
     const size_t geometry = rep.total_bytes - rep.header_bytes - rep.framing_bytes - rep.connectivity_bytes -
                             rep.irregular_bytes;
+    const double seconds = r.seconds_repair + r.seconds_remesh + r.seconds_encode + r.seconds_general;
     if (opt->json) {
       nlohmann::json search = nlohmann::json::array();  // the chosen step's grid search
       for (const auto& st : r.remesh.search) search.push_back({{"grid_steps", st.grid}, {"rms", st.error.rms}});
       nlohmann::json tried = nlohmann::json::array();
       for (const auto& t : r.tried) tried.push_back({{"bits", t.bits}, {"step_scale", t.step_scale}, {"bytes", t.bytes}});
+      auto candidate = [](const pipeline::PackResult::Candidate& c) {
+        nlohmann::json j = {{"made", c.made}, {"seconds", c.seconds}};
+        if (c.made) {
+          j["bytes"] = c.bytes;
+          j["vertices"] = c.vertices;
+          j["bits"] = c.bits;
+          j["rms_rel"] = c.rms;
+          j["max_rel"] = c.max;
+        } else if (!c.refused.empty()) {
+          j["refused"] = c.refused;
+        }
+        return j;
+      };
       // The shared schema (json_report.h, docs/cli-json.md), then pack's own keys.
       JsonReport j("pack");
       j.input(opt->input).output(opt->output).mesh_size(rep.vertices, rep.triangles);
@@ -150,37 +183,54 @@ void add_pack_command(CLI::App& root) {
                {"irregular", rep.irregular_bytes},
                {"geometry", geometry},
                {"header_and_framing", rep.header_bytes + rep.framing_bytes}});
-      j.seconds(r.seconds_repair + r.seconds_remesh + r.seconds_encode);
+      j.seconds(seconds);
       j.distance(r.remesh.error.rms, r.remesh.error.max);
-      j["seconds_by_stage"] = {{"repair", r.seconds_repair}, {"remesh", r.seconds_remesh}, {"encode", r.seconds_encode}};
+      j["seconds_by_stage"] = {{"repair", r.seconds_repair},
+                               {"remesh", r.seconds_remesh},
+                               {"encode", r.seconds_encode},
+                               {"general", r.seconds_general}};
+      j["mode"] = pipeline::pack_mode_name(r.mode);
+      j["mode_requested"] = opt->mode;
+      j["mode_reason"] = r.mode_reason;
+      j["candidates"] = {{"prm", candidate(r.prm_candidate)}, {"general", candidate(r.general_candidate)}};
       j["n_o"] = input.num_vertices();
       j["n_r"] = rep.vertices;
+      j["n_r_over_n_o"] = n_o > 0 ? rep.vertices / n_o : 0.0;
       j["holes_closed"] = r.repair.holes_filled;
       j["changes"] = changes;
-      j["notes"] = r.repair.notes;
-      j["grid_size"] = g;
-      j["grid_steps"] = r.remesh.prm.lattice.A;
-      j["tau"] = opt->tau;
+      j["notes"] = notes;
       j["bits"] = r.bits;
       j["step_scale"] = r.step_scale;
-      j["step"] = r.remesh.prm.frame.step;
       j["tried"] = tried;
       j["effort"] = opt->effort;
-      j["remesh_rounds"] = r.remesh_rounds;
-      j["search"] = search;
-      j["regular_share"] = s.faces ? static_cast<double>(s.regular_faces) / s.faces : 0.0;
-      j["regular_patches"] = rep.regular_patches;
-      j["height_lambda"] = r.codec_options.height_lambda;
-      j["height_sweeps"] = r.codec_options.height_lambda > 0 ? r.codec_options.height_sweeps : 0;
+      if (!general) {
+        j["grid_size"] = g;
+        j["grid_steps"] = r.remesh.prm.lattice.A;
+        j["tau"] = opt->tau;
+        j["step"] = r.remesh.prm.frame.step;
+        j["remesh_rounds"] = r.remesh_rounds;
+        j["search"] = search;
+        j["regular_share"] = s.faces ? static_cast<double>(s.regular_faces) / s.faces : 0.0;
+        j["regular_patches"] = rep.regular_patches;
+        j["height_lambda"] = r.codec_options.height_lambda;
+        j["height_sweeps"] = r.codec_options.height_lambda > 0 ? r.codec_options.height_sweeps : 0;
+      }
       j.print();
     } else {
       std::printf("%s -> %s: %zu bytes, %.3f bits per vertex\n", opt->input.c_str(), opt->output.c_str(),
                   rep.total_bytes, 8.0 * rep.total_bytes / n_r);
+      std::printf("  mode: %s (%s)\n", pipeline::pack_mode_name(r.mode), r.mode_reason.c_str());
       for (const std::string& c : changes) std::printf("  changed: %s\n", c.c_str());
-      for (const std::string& n : r.repair.notes) std::printf("  note: %s\n", n.c_str());
-      std::printf("  remeshed: %zu -> %u vertices, grid %.6g (%lld steps), %.1f%% regular triangles in %u patches\n",
-                  input.num_vertices(), rep.vertices, g, static_cast<long long>(r.remesh.prm.lattice.A),
-                  s.faces ? 100.0 * static_cast<double>(s.regular_faces) / s.faces : 0.0, rep.regular_patches);
+      for (const std::string& n : notes) std::printf("  note: %s\n", n.c_str());
+      if (general)
+        std::printf("  coded as it is: %zu -> %u vertices (n_r/n_o %.3f), %u triangles\n", input.num_vertices(),
+                    rep.vertices, n_o > 0 ? rep.vertices / n_o : 0.0, rep.triangles);
+      else
+        std::printf("  remeshed: %zu -> %u vertices (n_r/n_o %.3f), grid %.6g (%lld steps), %.1f%% regular triangles "
+                    "in %u patches\n",
+                    input.num_vertices(), rep.vertices, n_o > 0 ? rep.vertices / n_o : 0.0, g,
+                    static_cast<long long>(r.remesh.prm.lattice.A),
+                    s.faces ? 100.0 * static_cast<double>(s.regular_faces) / s.faces : 0.0, rep.regular_patches);
       std::printf("  error of the decoded mesh to the input: RMS %.3e, max %.3e of the diagonal, at %d bits",
                   r.remesh.error.rms, r.remesh.error.max, r.bits);
       if (r.step_scale != 1) std::printf(" with the step x%.3f", r.step_scale);
@@ -200,8 +250,9 @@ void add_pack_command(CLI::App& root) {
                   "(%.2f bpv), header %zu B\n",
                   rep.connectivity_bytes, 8.0 * rep.connectivity_bytes / n_r, rep.irregular_bytes,
                   8.0 * rep.irregular_bytes / n_r, geometry, 8.0 * geometry / n_r, rep.header_bytes + rep.framing_bytes);
-      std::printf("  time: repair %.2f s, remesh %.2f s (%zu grids, effort %d), encode %.3f s\n", r.seconds_repair, r.seconds_remesh, r.remesh_rounds, opt->effort,
-                  r.seconds_encode);
+      std::printf("  time: repair %.2f s, remesh %.2f s (%zu grids, effort %d), encode %.3f s, general path %.3f s\n",
+                  r.seconds_repair, r.seconds_remesh, r.remesh_rounds, opt->effort, r.seconds_encode,
+                  r.seconds_general);
     }
   });
 }

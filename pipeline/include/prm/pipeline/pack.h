@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 #include "prm/codec.h"
@@ -37,7 +38,17 @@ constexpr double kStepPerTargetError = 2.6;
 // and 33 times).
 constexpr double kGridPerTargetError = 32;
 
+// Which stream pack() makes (issue 22, "never worse than not remeshing"). prm: the remeshed piecewise regular mesh
+// (paper §2; format 1.4). general: the input itself through the general path (format 1.0, pack_general.h) at the
+// smallest bit depth that meets the target. automatic: both, and the smaller stream is kept; the piecewise regular
+// one when the general path refuses the input (non-manifold), the general one when no PRM can be made (the target is
+// not reached, repair cannot close the input, ...). Without a target error (a grid given) automatic is prm: there is
+// no error the two could be compared at.
+enum class PackMode { prm, general, automatic };
+const char* pack_mode_name(PackMode mode);  // "prm", "general", "auto" (the --mode values)
+
 struct PackOptions {
+  PackMode mode = PackMode::automatic;
   // The grid size: exactly one of these three.
   double target_error = 0;   // largest symmetric RMS distance of the decoded mesh to the input, fraction of the
                              // bounding-box diagonal
@@ -89,9 +100,9 @@ constexpr double kHeightLambdas[] = {0.03, 0.038, 0.048, 0.06, 0.076, 0.096, 0.1
 
 struct PackResult {
   std::vector<uint8_t> stream;
-  codec::EncodeReport report;
+  codec::EncodeReport report;   // of the stream kept (a general-path report when mode is general)
   remesh::RemeshResult remesh;  // the PRM (with the heights the stream holds), the error of the decoded mesh, the
-                                // grid search
+                                // grid search; with mode general only remesh.error is set (the general stream's)
   RepairReport repair;
   bool repaired = false;        // the input had holes, pinches or degenerate faces
   int bits = 12;                // the stream's quantization
@@ -106,10 +117,28 @@ struct PackResult {
   size_t remesh_rounds = 0;     // grids remeshed by the whole search
   Mesh repaired_input;          // what was remeshed when `repaired` (the input itself otherwise, not copied)
   double seconds_repair = 0, seconds_remesh = 0, seconds_encode = 0;
+
+  // PackOptions::mode: what the stream is (prm or general) and why; both candidates as they were made or refused.
+  PackMode mode = PackMode::prm;
+  std::string mode_reason;
+  struct Candidate {
+    bool made = false;
+    std::string refused;      // why it was not made (empty when made or not tried)
+    size_t bytes = 0;
+    uint32_t vertices = 0;
+    int bits = 0;
+    double rms = 0, max = 0;  // decoded mesh to what it codes (the repaired input for prm, the input for general)
+    double seconds = 0;       // wall-clock seconds to make it
+  };
+  Candidate prm_candidate, general_candidate;
+  double seconds_general = 0;   // the general candidate (the whole job: repair + remesh + encode + general)
+  size_t input_vertices = 0;    // n_o: the input's vertices (n_r = report.vertices)
 };
 
 // Throws prm::InputError on input the repair cannot make a closed manifold, remesh::TargetNotReached when no grid
-// size meets target_error, and prm::InputError with the codec's message if the PRM cannot be encoded (a bug).
+// size meets target_error, and prm::InputError with the codec's message if the PRM cannot be encoded (a bug); with
+// mode general, prm::InputError when the general path refuses the input and TargetNotReached when no bit depth meets
+// the target; with mode automatic, the PRM's error (naming the general path's too) when neither can be made.
 PackResult pack(const Mesh& input, const PackOptions& options);
 
 }  // namespace prm::pipeline

@@ -1,0 +1,40 @@
+// The general-path candidate of `prm pack` (PackOptions::mode, issue 22): the input coded as it comes, through
+// codec::encode (format 1.0, spec §6 and §10), at the smallest bit depth whose decoded mesh meets the target error.
+// Never worse than not remeshing: pack() keeps it when its stream is smaller than the piecewise regular one.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "prm/codec.h"
+#include "prm/mesh.h"
+#include "prm/metro_distance.h"
+
+namespace prm::pipeline {
+
+// The bit depths the general candidate may use (codec::EncodeOptions::position_bits).
+constexpr int kMinGeneralBits = 8;
+constexpr int kMaxGeneralBits = 20;
+
+struct GeneralPack {
+  std::vector<uint8_t> stream;
+  codec::EncodeReport report;
+  int bits = 0;
+  double rms = 0, max = 0;  // symmetric Metro distances of the decoded mesh to the input, fractions of the diagonal
+  struct Trial {
+    int bits = 0;
+    size_t bytes = 0;
+    double rms = 0;
+  };
+  std::vector<Trial> tried;  // every bit depth encoded, in the order tried
+};
+
+// bits > 0: that bit depth (target_error, when > 0, must still be met). bits = 0: the smallest of
+// kMinGeneralBits..kMaxGeneralBits whose decoded mesh has an RMS distance to `reference` (the input's Metro
+// reference) of at most `target` (bisection: the quantization error falls as the bit depth grows); `target` <= 0
+// with bits = 0: 12 bits. Throws prm::InputError with the codec's message when the general path refuses the mesh
+// (non-manifold, ...), remesh::TargetNotReached when no bit depth meets the target.
+GeneralPack pack_general(const Mesh& input, const MetroReference& reference, double target, int bits);
+
+}  // namespace prm::pipeline

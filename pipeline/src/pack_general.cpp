@@ -1,0 +1,78 @@
+#include "prm/pipeline/pack_general.h"
+
+#include <string>
+#include <utility>
+
+#include "prm/error.h"
+#include "prm/pipeline/codec_bridge.h"
+#include "prm/remesh/remesh.h"
+
+namespace prm::pipeline {
+
+namespace {
+
+// One bit depth: encode (spec §6, §10), decode, measure against the input.
+GeneralPack encode_at(const Mesh& input, const MetroReference& reference, int bits) {
+  std::vector<double> xyz;
+  xyz.reserve(3 * input.positions.size());
+  for (const Vec3& p : input.positions) xyz.insert(xyz.end(), {p[0], p[1], p[2]});
+  std::vector<uint32_t> triangles;
+  triangles.reserve(3 * input.triangles.size());
+  for (const Tri& t : input.triangles) triangles.insert(triangles.end(), {t[0], t[1], t[2]});
+  codec::EncodeOptions eo;
+  eo.position_bits = bits;
+  GeneralPack out;
+  auto encoded = codec::encode(xyz.data(), input.positions.size(), triangles.data(), input.triangles.size(), eo,
+                               &out.report);
+  if (!encoded.ok())
+    throw InputError("the general path refuses the input: " + encoded.status.message + " (spec §" +
+                     encoded.status.spec_section + ")");
+  auto decoded = codec::decode(encoded.value.data(), encoded.value.size());
+  if (!decoded.ok()) throw InputError("the encoder's stream does not decode (a codec bug): " + decoded.status.message);
+  const DistanceReport d = reference.compare(to_mesh(decoded.value));
+  out.stream = std::move(encoded.value);
+  out.bits = bits;
+  out.rms = d.rel(d.rms);
+  out.max = d.rel(d.max);
+  return out;
+}
+
+}  // namespace
+
+GeneralPack pack_general(const Mesh& input, const MetroReference& reference, double target, int bits) {
+  std::vector<GeneralPack::Trial> tried;
+  auto at = [&](int b) {
+    GeneralPack g = encode_at(input, reference, b);
+    tried.push_back({b, g.stream.size(), g.rms});
+    return g;
+  };
+  GeneralPack best;
+  if (bits > 0 || target <= 0) {
+    best = at(bits > 0 ? bits : 12);
+    if (target > 0 && best.rms > target)
+      throw remesh::TargetNotReached("the general path at " + std::to_string(best.bits) + " bits has an RMS error of " +
+                                     std::to_string(best.rms) + ", above the target " + std::to_string(target));
+  } else {
+    // Bisection over [lo, hi]: hi meets the target, every depth below lo does not.
+    int lo = kMinGeneralBits, hi = kMaxGeneralBits;
+    best = at(hi);
+    if (best.rms > target)
+      throw remesh::TargetNotReached("the general path at " + std::to_string(kMaxGeneralBits) +
+                                     " bits has an RMS error of " + std::to_string(best.rms) + ", above the target " +
+                                     std::to_string(target));
+    while (lo < hi) {
+      const int mid = (lo + hi) / 2;
+      GeneralPack g = at(mid);
+      if (g.rms <= target) {
+        hi = mid;
+        best = std::move(g);
+      } else {
+        lo = mid + 1;
+      }
+    }
+  }
+  best.tried = std::move(tried);
+  return best;
+}
+
+}  // namespace prm::pipeline

@@ -1,0 +1,141 @@
+// PackOptions::mode (`prm pack --mode`, issue 22 "never worse than not remeshing"): auto keeps the smaller of the
+// piecewise regular stream and the input coded through the general path, both meeting the target; the forced modes
+// make the stream they name; an input the general path refuses is packed as a PRM, the report saying why.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "prm/error.h"
+#include "prm/mesh_io.h"
+#include "prm/metro_distance.h"
+#include "prm/pipeline/codec_bridge.h"
+#include "prm/pipeline/pack.h"
+#include "prm/pipeline/pack_general.h"
+#include "awkward_meshes.h"
+
+namespace {
+
+using prm::pipeline::PackMode;
+using prm::pipeline::PackOptions;
+using prm::pipeline::PackResult;
+
+// The decoded stream against the input, measured here at Metro's full density (independently of pack).
+double decoded_rms(const prm::Mesh& input, const PackResult& r) {
+  const auto decoded = prm::codec::decode(r.stream.data(), r.stream.size());
+  EXPECT_TRUE(decoded.ok()) << decoded.status.message;
+  const prm::DistanceReport d = prm::metro_distance(input, prm::pipeline::to_mesh(decoded.value));
+  return d.rel(d.rms);
+}
+
+// Whether the stream is a PRM stream: it has the patches section (spec §3.4, section 4); a general-path stream has
+// only connectivity and positions.
+bool is_prm_stream(const PackResult& r) {
+  const auto info = prm::codec::inspect(r.stream.data(), r.stream.size());
+  EXPECT_TRUE(info.ok()) << info.status.message;
+  for (const auto& s : info.value.sections)
+    if (s.id == 4) return true;
+  return false;
+}
+
+// auto chose the smaller of the two measured streams, and the stream kept is that candidate's.
+void expect_consistent_choice(const PackResult& r) {
+  ASSERT_TRUE(r.prm_candidate.made) << r.prm_candidate.refused;
+  ASSERT_TRUE(r.general_candidate.made) << r.general_candidate.refused;
+  if (r.mode == PackMode::general) {
+    EXPECT_LT(r.general_candidate.bytes, r.prm_candidate.bytes);
+    EXPECT_EQ(r.stream.size(), r.general_candidate.bytes);
+    EXPECT_FALSE(is_prm_stream(r));
+  } else {
+    EXPECT_LE(r.prm_candidate.bytes, r.general_candidate.bytes);
+    EXPECT_EQ(r.stream.size(), r.prm_candidate.bytes);
+    EXPECT_TRUE(is_prm_stream(r));
+  }
+  EXPECT_FALSE(r.mode_reason.empty());
+}
+
+// The 12-triangle cube: a grid meeting 2e-4 has tens of thousands of vertices; coded as it is, 8 vertices.
+TEST(PackMode, CubeIsCodedAsItIs) {
+  const prm::Mesh cube = prm::test::box(1, 1, 1, 1);
+  ASSERT_EQ(cube.triangles.size(), 12u);
+  PackOptions o;
+  o.target_error = 2e-4;
+  const PackResult r = prm::pipeline::pack(cube, o);
+  EXPECT_EQ(r.mode, PackMode::general) << r.mode_reason;
+  expect_consistent_choice(r);
+  EXPECT_EQ(r.report.vertices, cube.positions.size());  // n_r / n_o = 1
+  EXPECT_EQ(r.input_vertices, cube.positions.size());
+  EXPECT_LT(5 * r.stream.size(), r.prm_candidate.bytes) << r.stream.size() << " B against " << r.prm_candidate.bytes;
+  EXPECT_GT(r.prm_candidate.vertices, 100 * cube.positions.size());
+  EXPECT_LE(decoded_rms(cube, r), o.target_error);
+}
+
+// Forced modes make the stream they name, each meeting the target.
+TEST(PackMode, ForcedModes) {
+  const prm::Mesh input = prm::read_mesh(std::string(PRM_SHARED_MESHES) + "/spot.obj");
+  PackOptions o;
+  o.target_error = 5e-4;
+  o.mode = PackMode::general;
+  const PackResult g = prm::pipeline::pack(input, o);
+  EXPECT_EQ(g.mode, PackMode::general);
+  EXPECT_FALSE(g.prm_candidate.made);
+  EXPECT_EQ(g.report.vertices, input.positions.size());
+  EXPECT_FALSE(is_prm_stream(g));
+  EXPECT_GE(g.bits, prm::pipeline::kMinGeneralBits);
+  EXPECT_LE(decoded_rms(input, g), o.target_error);
+  // One bit fewer misses the target (the smallest bit depth that meets it).
+  if (g.bits > prm::pipeline::kMinGeneralBits) {
+    o.bits = g.bits - 1;
+    EXPECT_THROW(prm::pipeline::pack(input, o), prm::remesh::TargetNotReached);
+    o.bits = 0;
+  }
+  o.mode = PackMode::prm;
+  const PackResult p = prm::pipeline::pack(input, o);
+  EXPECT_EQ(p.mode, PackMode::prm);
+  EXPECT_FALSE(p.general_candidate.made);
+  EXPECT_TRUE(is_prm_stream(p));
+  EXPECT_LE(decoded_rms(input, p), o.target_error);
+  // Without a target error, auto is prm.
+  PackOptions grid;
+  grid.grid_fraction = 0.05;
+  const PackResult q = prm::pipeline::pack(input, grid);
+  EXPECT_EQ(q.mode, PackMode::prm);
+  EXPECT_FALSE(q.general_candidate.made);
+}
+
+// A pinched vertex: the general path refuses it, repair splits it for the PRM; auto says why it is prm.
+TEST(PackMode, NonManifoldInputIsRemeshed) {
+  const prm::Mesh bowtie = prm::test::bowtie();
+  PackOptions o;
+  o.target_error = 2e-4;
+  o.bits = 12;
+  o.step_scale = 1;
+  const PackResult r = prm::pipeline::pack(bowtie, o);
+  EXPECT_EQ(r.mode, PackMode::prm);
+  EXPECT_FALSE(r.general_candidate.made);
+  EXPECT_NE(r.general_candidate.refused.find("non-manifold"), std::string::npos) << r.general_candidate.refused;
+  EXPECT_NE(r.mode_reason.find("general path cannot code"), std::string::npos) << r.mode_reason;
+  o.mode = PackMode::general;
+  EXPECT_THROW(prm::pipeline::pack(bowtie, o), prm::InputError);
+}
+
+// Small real meshes at 2e-4 (a CAD part, a sparse cow): whichever auto keeps is the smaller stream, and both meet
+// the target.
+class PackModeAuto : public ::testing::TestWithParam<const char*> {};
+
+TEST_P(PackModeAuto, KeepsTheSmallerStream) {
+  const prm::Mesh input = prm::read_mesh(std::string(PRM_SHARED_MESHES) + "/" + GetParam());
+  PackOptions o;
+  o.target_error = 2e-4;
+  const PackResult r = prm::pipeline::pack(input, o);
+  std::printf("%s: %s, PRM %zu B, general %zu B at %d bits: %s\n", GetParam(), prm::pipeline::pack_mode_name(r.mode),
+              r.prm_candidate.bytes, r.general_candidate.bytes, r.general_candidate.bits, r.mode_reason.c_str());
+  expect_consistent_choice(r);
+  EXPECT_LE(r.prm_candidate.rms, o.target_error);
+  EXPECT_LE(r.general_candidate.rms, o.target_error);
+  EXPECT_LE(decoded_rms(input, r), o.target_error);
+  EXPECT_EQ(r.input_vertices, input.positions.size());
+}
+
+INSTANTIATE_TEST_SUITE_P(SmallMeshes, PackModeAuto, ::testing::Values("fandisk.obj", "spot.obj"));
+
+}  // namespace
