@@ -17,6 +17,9 @@
 // model gets two more rows: "(12 bits)", the paper's protocol, and "(12 bits, paper n_r)", remeshed at the grid that
 // gives about the paper's vertex count (its e is then below the paper's), so that bits per vertex compare at equal
 // sampling density. S_r is Draco at the stream's bit depth, S_o Draco at 12 bits.
+// mode: the stream pack()'s default mode (auto, issue 22) kept, prm or general (the input coded as it is, at the
+// smallest bit depth meeting the target), with the other candidate's size; a general row's g and regular are 0,
+// its n_r is n_o and its "S_r" columns are Draco on the decoded input.
 //
 //   prm_bench_table1 [--csv=FILE] [--meshes=SUB[,SUB...]] [--target=E] [--rounds=N] [--no-cgal] [--no-paper-density]
 #include <algorithm>
@@ -76,6 +79,8 @@ struct Result {
   double draco_dec_same = 0;  // Draco decoding S_r's stream (the same PRM, the stream's bits and grid)
   int bits = 12;  // the stream's quantization; Draco's S_r uses the same (S_o: 12 bits)
   double step_scale = 1;  // the stream's step in units of 2^-bits of the extent (PackResult::step_scale)
+  std::string mode = "prm";  // PackResult::mode (auto chose it)
+  size_t other_bytes = 0;    // the candidate auto did not keep (0: not made)
 };
 
 std::vector<std::string> split(const std::string& s, char sep) {
@@ -113,8 +118,12 @@ Result measure(const std::string& name, const std::string& path, double target, 
   r.remesh = pack.seconds_repair + pack.seconds_remesh;
   r.bits = pack.bits;
   r.step_scale = pack.step_scale;
-  r.n_r = pack.remesh.prm.mesh.num_vertices();
-  r.g = static_cast<double>(pack.remesh.prm.lattice.A) * pack.remesh.prm.frame.step;
+  const bool general = pack.mode == prm::pipeline::PackMode::general;
+  r.mode = prm::pipeline::pack_mode_name(pack.mode);
+  const auto& other = general ? pack.prm_candidate : pack.general_candidate;
+  r.other_bytes = other.made ? other.bytes : 0;
+  r.n_r = pack.report.vertices;
+  r.g = general ? 0 : static_cast<double>(pack.remesh.prm.lattice.A) * pack.remesh.prm.frame.step;
   r.g_rel = r.g / prm::bbox_diagonal(original);
   r.regular_share = pack.remesh.prm.stats.faces
                         ? static_cast<double>(pack.remesh.prm.stats.regular_faces) / pack.remesh.prm.stats.faces
@@ -129,7 +138,10 @@ Result measure(const std::string& name, const std::string& path, double target, 
   r.enc = std::min(pack.seconds_encode, prm::bench::best_cpu_time(
                                             [&] {
                                               prm::codec::EncodeReport rep;
-                                              (void)prm::pipeline::encode_prm_mesh(pack.remesh.prm, &rep);
+                                              if (general)
+                                                (void)prm::pipeline::encode_any_mesh(original, pack.bits, &rep);
+                                              else
+                                                (void)prm::pipeline::encode_prm_mesh(pack.remesh.prm, &rep);
                                             },
                                             std::max(1, rounds / 3)));
 
@@ -208,14 +220,14 @@ std::string ratio_or_dash(size_t a, size_t b) {
 
 void print_markdown(const std::vector<Result>& rows) {
   std::printf(
-      "| mesh | n_o | n_r | g | g/diag | bits | regular | e·1e4 | S_o KB | S_r KB | conn KB | irreg KB | geom KB | "
+      "| mesh | n_o | n_r | g | g/diag | bits | mode (other) | regular | e·1e4 | S_o KB | S_r KB | conn KB | irreg KB | geom KB | "
       "total KB | bpv | total/S_o | total/S_r | total/S_r12 | Draco e·1e4 at bits | S_r(e) bits | total/S_r(e) | "
       "enc ms | dec ms | Draco dec ms | dec Draco/PRM | dec ns/vertex | Draco same PRM ns/vertex | vertices/s PRM/Draco "
       "same PRM | remesh s |\n");
-  std::printf("|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const Result& r : rows) {
     if (!r.failure.empty()) {
-      std::printf("| %s | %zu | %s |||||||||||||||||||||||||\n", r.mesh.c_str(), r.n_o, r.failure.c_str());
+      std::printf("| %s | %zu | %s ||||||||||||||||||||||||||\n", r.mesh.c_str(), r.n_o, r.failure.c_str());
       continue;
     }
     char bits[32];
@@ -223,9 +235,15 @@ void print_markdown(const std::vector<Result>& rows) {
       std::snprintf(bits, sizeof bits, "%d ×%.2f", r.bits, r.step_scale);
     else
       std::snprintf(bits, sizeof bits, "%d", r.bits);
-    std::printf("| %s | %zu | %zu | %.4g | %.5f | %s | %.1f%% | %.2f | %s | %s | %s | %s | %s | **%s** | **%.2f** | %.3f | "
+    char mode[64];
+    if (r.other_bytes)
+      std::snprintf(mode, sizeof mode, "%s (%s %s KB)", r.mode.c_str(), r.mode == "prm" ? "general" : "prm",
+                    kb(r.other_bytes).c_str());
+    else
+      std::snprintf(mode, sizeof mode, "%s", r.mode.c_str());
+    std::printf("| %s | %zu | %zu | %.4g | %.5f | %s | %s | %.1f%% | %.2f | %s | %s | %s | %s | %s | **%s** | **%.2f** | %.3f | "
                 "%.3f | %.3f | %.2f | %d | %s | %.1f | %.1f | %.1f | %.2f | %.0f | %.0f | %.2f | %.1f |\n",
-                r.mesh.c_str(), r.n_o, r.n_r, r.g, r.g_rel, bits, 100 * r.regular_share, r.e * 1e4, kb(r.s_o).c_str(),
+                r.mesh.c_str(), r.n_o, r.n_r, r.g, r.g_rel, bits, mode, 100 * r.regular_share, r.e * 1e4, kb(r.s_o).c_str(),
                 kb(r.s_r).c_str(), kb(r.conn).c_str(), kb(r.irreg).c_str(), kb(r.geom).c_str(), kb(r.total).c_str(),
                 8.0 * static_cast<double>(r.total) / static_cast<double>(r.n_r),
                 static_cast<double>(r.total) / static_cast<double>(r.s_o),
@@ -248,20 +266,20 @@ void print_markdown(const std::vector<Result>& rows) {
 
 void print_csv(std::FILE* f, const std::vector<Result>& rows) {
   std::fprintf(f,
-               "source,mesh,target,n_o,n_r,g,g_rel,bits,step_scale,regular_share,e,e_max,s_o_bytes,s_r_bytes,s_r12_bytes,draco_prm_e,"
+               "source,mesh,target,n_o,n_r,g,g_rel,bits,step_scale,mode,other_bytes,regular_share,e,e_max,s_o_bytes,s_r_bytes,s_r12_bytes,draco_prm_e,"
                "s_re_bits,s_re_bytes,conn_bytes,irreg_bytes,"
                "geom_bytes,total_bytes,bpv,total_over_s_o,total_over_s_r,encode_s,decode_s,draco_decode_s,draco_same_prm_decode_s,remesh_s,"
                "failure\n");
   for (const Result& r : rows)
-    std::fprintf(f, "ours,\"%s\",%g,%zu,%zu,%.9g,%.9g,%d,%.6g,%.6f,%.6g,%.6g,%zu,%zu,%zu,%.6g,%d,%zu,%zu,%zu,%zu,%zu,%.4f,%.4f,%.4f,%.6g,%.6g,%.6g,%.6g,%.4g,%s\n",
-                 r.mesh.c_str(), r.target, r.n_o, r.n_r, r.g, r.g_rel, r.bits, r.step_scale, r.regular_share, r.e, r.e_max, r.s_o, r.s_r,
+    std::fprintf(f, "ours,\"%s\",%g,%zu,%zu,%.9g,%.9g,%d,%.6g,%s,%zu,%.6f,%.6g,%.6g,%zu,%zu,%zu,%.6g,%d,%zu,%zu,%zu,%zu,%zu,%.4f,%.4f,%.4f,%.6g,%.6g,%.6g,%.6g,%.4g,%s\n",
+                 r.mesh.c_str(), r.target, r.n_o, r.n_r, r.g, r.g_rel, r.bits, r.step_scale, r.mode.c_str(), r.other_bytes, r.regular_share, r.e, r.e_max, r.s_o, r.s_r,
                  r.s_r12, r.e_r, r.bits_re, r.s_re,
                  r.conn, r.irreg, r.geom, r.total, r.n_r ? 8.0 * static_cast<double>(r.total) / static_cast<double>(r.n_r) : 0.0,
                  r.s_o ? static_cast<double>(r.total) / static_cast<double>(r.s_o) : 0.0,
                  r.s_r ? static_cast<double>(r.total) / static_cast<double>(r.s_r) : 0.0, r.enc, r.dec, r.draco_dec,
                  r.draco_dec_same, r.remesh, r.failure.c_str());
   for (const PaperRow& p : kPaper)
-    std::fprintf(f, "paper,\"%s\",%g,%.0f,%.0f,%g,,12,1,,%g,,%.0f,%.0f,,,,,%.0f,%.0f,%.0f,%.0f,%.4f,%.4f,%.4f,,%g,,,,\n", p.model,
+    std::fprintf(f, "paper,\"%s\",%g,%.0f,%.0f,%g,,12,1,prm,,,%g,,%.0f,%.0f,,,,,%.0f,%.0f,%.0f,%.0f,%.4f,%.4f,%.4f,,%g,,,,\n", p.model,
                  p.e4 * 1e-4, p.n_o, p.n_r, p.g, p.e4 * 1e-4, p.s_o * 1024, p.s_r * 1024, p.conn * 1024,
                  p.irreg * 1024, p.geom * 1024, p.total * 1024, 8192.0 * p.total / p.n_r, p.total / p.s_o,
                  p.total / p.s_r, p.t);

@@ -174,6 +174,8 @@ ScenePackReport pack_scene(Document& doc, const ScenePackOptions& options) {
           r.diagonal = d.diagonal;
           r.bits = packed.bits;
           r.repaired = packed.repaired;
+          r.mode = pipeline::pack_mode_name(packed.mode);
+          r.mode_reason = packed.mode_reason;
           r.stream_bytes = packed.stream.size();
           r.vertices_out = decoded.value.num_vertices();
           r.triangles_out = decoded.value.num_triangles();

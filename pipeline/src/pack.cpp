@@ -546,6 +546,7 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
     g.prm_candidate = prm;
     g.seconds_repair = out.seconds_repair;
     g.seconds_remesh = out.seconds_remesh;
+    g.remesh_rounds = out.remesh_rounds;
     return g;
   }
   out.mode = PackMode::prm;

@@ -29,6 +29,7 @@ GeneralPack encode_at(const Mesh& input, const MetroReference& reference, int bi
                      encoded.status.spec_section + ")");
   auto decoded = codec::decode(encoded.value.data(), encoded.value.size());
   if (!decoded.ok()) throw InputError("the encoder's stream does not decode (a codec bug): " + decoded.status.message);
+  out.zero_area = count_zero_area_triangles(decoded.value);
   const DistanceReport d = reference.compare(to_mesh(decoded.value));
   out.stream = std::move(encoded.value);
   out.bits = bits;
@@ -40,6 +41,13 @@ GeneralPack encode_at(const Mesh& input, const MetroReference& reference, int bi
 }  // namespace
 
 GeneralPack pack_general(const Mesh& input, const MetroReference& reference, double target, int bits) {
+  auto meets = [&](const GeneralPack& g) { return g.zero_area == 0 && (target <= 0 || g.rms <= target); };
+  auto missed = [&](const GeneralPack& g) {
+    return "the general path at " + std::to_string(g.bits) + " bits " +
+           (g.zero_area ? "has " + std::to_string(g.zero_area) + " triangle(s) of zero area"
+                        : "has an RMS error of " + std::to_string(g.rms) + ", above the target " +
+                              std::to_string(target));
+  };
   std::vector<GeneralPack::Trial> tried;
   auto at = [&](int b) {
     GeneralPack g = encode_at(input, reference, b);
@@ -49,21 +57,16 @@ GeneralPack pack_general(const Mesh& input, const MetroReference& reference, dou
   GeneralPack best;
   if (bits > 0 || target <= 0) {
     best = at(bits > 0 ? bits : 12);
-    if (target > 0 && best.rms > target)
-      throw remesh::TargetNotReached("the general path at " + std::to_string(best.bits) + " bits has an RMS error of " +
-                                     std::to_string(best.rms) + ", above the target " + std::to_string(target));
+    if (!meets(best)) throw remesh::TargetNotReached(missed(best));
   } else {
     // Bisection over [lo, hi]: hi meets the target, every depth below lo does not.
     int lo = kMinGeneralBits, hi = kMaxGeneralBits;
     best = at(hi);
-    if (best.rms > target)
-      throw remesh::TargetNotReached("the general path at " + std::to_string(kMaxGeneralBits) +
-                                     " bits has an RMS error of " + std::to_string(best.rms) + ", above the target " +
-                                     std::to_string(target));
+    if (!meets(best)) throw remesh::TargetNotReached(missed(best));
     while (lo < hi) {
       const int mid = (lo + hi) / 2;
       GeneralPack g = at(mid);
-      if (g.rms <= target) {
+      if (meets(g)) {
         hi = mid;
         best = std::move(g);
       } else {

@@ -51,6 +51,22 @@ run_json(remesh KEYS input output ${counts} distance.rms_rel distance.max_rel se
          ARGS remesh "${DATA}/cube_quads.obj" -o "${WORK}/cube_prm.ply" --grid-fraction 0.1)
 run_json(pack KEYS input output ${counts} bytes.total bits_per_vertex.total bytes.connectivity distance.rms_rel
          distance.max_rel seconds n_o n_r ARGS pack "${DATA}/cube_quads.obj" -o "${WORK}/cube.prm" --grid-fraction 0.1)
+# --mode (issue 22): auto keeps the smaller stream and says why; the 8-vertex cube is coded as it is.
+run_json(pack KEYS mode mode_requested mode_reason candidates.prm.bytes candidates.general.bytes
+         candidates.general.bits n_r_over_n_o distance.rms_rel
+         ARGS pack "${DATA}/cube_quads.obj" -o "${WORK}/cube_auto.prm" --target-error 1e-3)
+string(JSON mode GET "${last_json}" mode)
+string(JSON n_r GET "${last_json}" n_r)
+if(NOT mode STREQUAL "general" OR NOT n_r EQUAL 8)
+  message(FATAL_ERROR "prm pack cube_quads.obj --target-error 1e-3: mode ${mode} with ${n_r} vertices, expected "
+                      "general with 8:\n${last_json}")
+endif()
+run_json(pack KEYS mode candidates.prm.made candidates.general.bits
+         ARGS pack "${DATA}/cube_quads.obj" -o "${WORK}/cube_general.prm" --target-error 1e-3 --mode general)
+string(JSON made GET "${last_json}" candidates prm made)
+if(made)
+  message(FATAL_ERROR "prm pack --mode general made a piecewise regular candidate:\n${last_json}")
+endif()
 run_json(render KEYS input output ${counts} seconds ARGS render "${WORK}/tet.prm" -o "${WORK}/tet.png" --size 64x64)
 
 # render of a .prm draws the mesh: more than the background in the picture.

@@ -33,6 +33,8 @@ struct PrimitiveReport {
   double diagonal = 0;       // input primitive's bounding-box diagonal (model units)
   int bits = 0;
   bool repaired = false;     // holes or defects were fixed before remeshing
+  std::string mode;          // the stream pipeline::pack kept: "prm" or "general" (PackOptions::mode)
+  std::string mode_reason;   // why (PackResult::mode_reason)
 };
 
 struct ScenePackReport {

@@ -22,6 +22,7 @@ struct GeneralPack {
   codec::EncodeReport report;
   int bits = 0;
   double rms = 0, max = 0;  // symmetric Metro distances of the decoded mesh to the input, fractions of the diagonal
+  size_t zero_area = 0;     // decoded triangles of zero area (count_zero_area_triangles)
   struct Trial {
     int bits = 0;
     size_t bytes = 0;
@@ -33,8 +34,10 @@ struct GeneralPack {
 // bits > 0: that bit depth (target_error, when > 0, must still be met). bits = 0: the smallest of
 // kMinGeneralBits..kMaxGeneralBits whose decoded mesh has an RMS distance to `reference` (the input's Metro
 // reference) of at most `target` (bisection: the quantization error falls as the bit depth grows); `target` <= 0
-// with bits = 0: 12 bits. Throws prm::InputError with the codec's message when the general path refuses the mesh
-// (non-manifold, ...), remesh::TargetNotReached when no bit depth meets the target.
+// with bits = 0: 12 bits. Like every stream of pack (issue 17), the decoded mesh must have no triangle of zero area:
+// a bit depth whose quantization collapses one does not meet the target either (an input with zero-area triangles
+// of its own is left to the remesher). Throws prm::InputError with the codec's message when the general path refuses
+// the mesh (non-manifold, ...), remesh::TargetNotReached when no bit depth meets the target.
 GeneralPack pack_general(const Mesh& input, const MetroReference& reference, double target, int bits);
 
 }  // namespace prm::pipeline
