@@ -209,6 +209,24 @@ TEST(GltfPackScene, KeepsWhatPrmCannotCarryAndSaysWhy) {
   EXPECT_FALSE(doc.json.contains("extensionsUsed"));
 }
 
+// PackOptions::mode applies per primitive (issue 22): a 12-triangle cube at a target error is kept as it is, coded
+// through the general path, and decodes to its 8 vertices.
+TEST(GltfPackScene, ACubeIsCodedAsItIs) {
+  Mesh cube;
+  for (int i = 0; i < 8; ++i) cube.positions.push_back({double(i & 1), double((i >> 1) & 1), double((i >> 2) & 1)});
+  cube.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
+                    {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
+  Document doc = document_from_mesh(cube, "cube");
+  ScenePackOptions o;
+  o.pack.target_error = 1e-3;
+  const ScenePackReport r = pack_scene(doc, o);
+  ASSERT_EQ(r.primitives.size(), 1u);
+  ASSERT_TRUE(r.primitives[0].compressed) << r.primitives[0].reason;
+  EXPECT_EQ(r.primitives[0].mode, "general") << r.primitives[0].mode_reason;
+  EXPECT_EQ(r.primitives[0].vertices_out, 8u);
+  EXPECT_EQ(decode_prm_primitive(doc, 0, 0).num_vertices(), 8u);
+}
+
 TEST(GltfPackScene, PacksAMeshAndTheStreamDecodesToTheAccessorCounts) {
   const Mesh spot = read_mesh(std::string(PRM_SHARED_MESHES) + "/spot.obj");
   Document doc = document_from_mesh(spot, "spot");
