@@ -467,7 +467,8 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
   if (mode != PackMode::prm) {
     const auto t0 = std::chrono::steady_clock::now();
     try {
-      general_pack = pack_general(input, *input_reference, has_target ? target : 0, options.bits);
+      general_pack = pack_general(input, *input_reference, has_target ? target : 0, options.bits,
+                                  options.max_minor);
       general.made = true;
       general.bytes = general_pack.stream.size();
       general.vertices = general_pack.report.vertices;

@@ -12,7 +12,7 @@ namespace prm::pipeline {
 namespace {
 
 // One bit depth: encode (spec §6, §10), decode, measure against the input.
-GeneralPack encode_at(const Mesh& input, const MetroReference& reference, int bits) {
+GeneralPack encode_at(const Mesh& input, const MetroReference& reference, int bits, int max_minor) {
   std::vector<double> xyz;
   xyz.reserve(3 * input.positions.size());
   for (const Vec3& p : input.positions) xyz.insert(xyz.end(), {p[0], p[1], p[2]});
@@ -21,6 +21,7 @@ GeneralPack encode_at(const Mesh& input, const MetroReference& reference, int bi
   for (const Tri& t : input.triangles) triangles.insert(triangles.end(), {t[0], t[1], t[2]});
   codec::EncodeOptions eo;
   eo.position_bits = bits;
+  eo.seam_context = max_minor >= codec::kFormatMinorSeam ? -1 : 0;
   GeneralPack out;
   auto encoded = codec::encode(xyz.data(), input.positions.size(), triangles.data(), input.triangles.size(), eo,
                                &out.report);
@@ -40,7 +41,8 @@ GeneralPack encode_at(const Mesh& input, const MetroReference& reference, int bi
 
 }  // namespace
 
-GeneralPack pack_general(const Mesh& input, const MetroReference& reference, double target, int bits) {
+GeneralPack pack_general(const Mesh& input, const MetroReference& reference, double target, int bits,
+                         int max_minor) {
   auto meets = [&](const GeneralPack& g) { return g.zero_area == 0 && (target <= 0 || g.rms <= target); };
   auto missed = [&](const GeneralPack& g) {
     return "the general path at " + std::to_string(g.bits) + " bits " +
@@ -50,7 +52,7 @@ GeneralPack pack_general(const Mesh& input, const MetroReference& reference, dou
   };
   std::vector<GeneralPack::Trial> tried;
   auto at = [&](int b) {
-    GeneralPack g = encode_at(input, reference, b);
+    GeneralPack g = encode_at(input, reference, b, max_minor);
     tried.push_back({b, g.stream.size(), g.rms});
     return g;
   };

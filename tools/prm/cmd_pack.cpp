@@ -60,7 +60,9 @@ void add_pack_command(CLI::App& root) {
       ->check(CLI::Range(pipeline::kMinEffort, pipeline::kMaxEffort));
   cmd->add_option("--mode", opt->mode,
                   "prm: remesh and code the piecewise regular mesh; general: code the input itself through the general "
-                  "path (format 1.0, as `prm encode`) at the smallest bit depth (8..20) that meets --target-error; auto "
+                  "path (format 1.0, or 1.3 with the seam context, as `prm encode`) at the smallest bit depth (8..20) "
+                  "that meets --target-error (exit 2 if it refuses the input: non-manifold; 3 if no bit depth meets the "
+                  "target without collapsing a triangle); auto "
                   "(default): make both and keep the smaller stream (prm when the general path refuses the input, "
                   "general when no piecewise regular mesh meets the target; prm without --target-error). The report "
                   "says which and why")

@@ -37,7 +37,9 @@ struct GeneralPack {
 // with bits = 0: 12 bits. Like every stream of pack (issue 17), the decoded mesh must have no triangle of zero area:
 // a bit depth whose quantization collapses one does not meet the target either (an input with zero-area triangles
 // of its own is left to the remesher). Throws prm::InputError with the codec's message when the general path refuses
-// the mesh (non-manifold, ...), remesh::TargetNotReached when no bit depth meets the target.
-GeneralPack pack_general(const Mesh& input, const MetroReference& reference, double target, int bits);
+// the mesh (non-manifold, ...), remesh::TargetNotReached when no bit depth meets the target. max_minor: the newest
+// format 1.N the stream may need (PackOptions::max_minor; below 3, no CLERS seam context, §6.5.2).
+GeneralPack pack_general(const Mesh& input, const MetroReference& reference, double target, int bits,
+                         int max_minor = codec::kFormatMinorPatchContexts);
 
 }  // namespace prm::pipeline
