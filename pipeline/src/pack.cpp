@@ -305,13 +305,18 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
   ProgressJob progress(one_attempt ? 1 : plan.exhaustive ? kExpectedExhaustiveAttempts : plan.steps,
                        kExpectedGridRounds + (rate_distortion ? plan.lambda_rounds : 0));
   ProgressJob::stage("repair");
-  // Paper §2: the remesher needs a closed, consistently oriented manifold; the bunny's holes are closed by fans first.
+  // The remesher needs a consistently oriented 2-manifold. Its boundary loops stay open (issue 22: a range scan is
+  // an open surface), unless fill_holes closes them with the paper's fans (paper §4, the bunny protocol).
   const MeshReport check = validate_mesh(input);
   Mesh closed;
   RepairReport repair;
-  const bool repaired = !check.ready_for_remesh();
-  if (repaired) closed = repair_mesh(input, &repair);  // throws InputError when it cannot be made a closed manifold
+  const bool ready = check.clean() && check.manifold() && check.oriented() && (check.closed() || !options.fill_holes);
+  const bool repaired = !ready;
+  RepairOptions repair_options;
+  repair_options.fill_holes = options.fill_holes;
+  if (repaired) closed = repair_mesh(input, &repair, repair_options);  // throws InputError when it cannot
   const Mesh& source = repaired ? closed : input;
+  const size_t loops_in = repaired ? validate_mesh(source).boundary_loops + repair.holes_filled : check.boundary_loops;
   const double seconds_repair = seconds_since(t0);
   ProgressJob::stage("reliefs");
   MetroOptions mo;
@@ -436,6 +441,8 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
     out.seconds_remesh = seconds - out.seconds_encode;  // the whole search
   }
   out.remesh_rounds = rounds;
+  out.boundary_loops_in = loops_in;
+  out.boundary_loops_out = validate_mesh(out.remesh.prm.mesh).boundary_loops;
   out.seconds_repair = seconds_repair;
   out.repaired = repaired;
   out.repair = repair;

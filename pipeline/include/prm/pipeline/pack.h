@@ -63,6 +63,10 @@ struct PackOptions {
   // The newest format 1.N the stream may need (encode_any_mesh): 4, or 3 (no patch contexts), or 2 (no seam context).
   int max_minor = codec::kFormatMinorPatchContexts;
   int effort = kDefaultEffort;  // kMinEffort..kMaxEffort (see above)
+  // Close every boundary loop with a fan before remeshing (RepairOptions::fill_holes; the paper's bunny protocol).
+  // False: the output keeps the input's boundary loops (the remesher treats the mesh boundary as a seam with no
+  // neighbour and never moves its vertices).
+  bool fill_holes = false;
 };
 
 // What one effort level does (effort_plan()).
@@ -93,7 +97,9 @@ struct PackResult {
   remesh::RemeshResult remesh;  // the PRM (with the heights the stream holds), the error of the decoded mesh, the
                                 // grid search
   RepairReport repair;
-  bool repaired = false;        // the input had holes, pinches or degenerate faces
+  bool repaired = false;        // the input had pinches or degenerate faces (or holes, with fill_holes)
+  size_t boundary_loops_in = 0;   // of the input after the repair's pinch splits, before any hole is filled
+  size_t boundary_loops_out = 0;  // of the piecewise regular mesh (the stream's; RepairReport::holes_filled: filled)
   int bits = 12;                // the stream's quantization
   codec::PrmOptions codec_options;  // what the stream was encoded with (height_lambda; without `unrounded`)
   double step_scale = 1;        // the stream's step in units of 2^-bits of the extent
