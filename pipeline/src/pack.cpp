@@ -294,7 +294,9 @@ EffortPlan effort_plan(int effort) {
   return p;
 }
 
-PackResult pack(const Mesh& input, const PackOptions& options) {
+namespace {
+
+PackResult pack_once(const Mesh& input, const PackOptions& options) {
   auto t0 = std::chrono::steady_clock::now();
   check_remesh_range(input);  // before anything squares a length
   // The effort applies to the search of the step; a given bit depth or step scale is searched as it always was.
@@ -448,6 +450,28 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
   out.repair = repair;
   if (repaired) out.repaired_input = std::move(closed);
   return out;
+}
+
+}  // namespace
+
+PackResult pack(const Mesh& input, const PackOptions& options) {
+  if (options.fill_holes) return pack_once(input, options);
+  try {
+    return pack_once(input, options);
+  } catch (const std::invalid_argument&) {
+    throw;
+  } catch (const std::logic_error& e) {
+    // A remesher invariant broken on an open surface (the merged reliefs not a manifold): never a crash, the
+    // paper's protocol instead, named in the report (RepairReport::notes) and by boundary_fallback.
+    if (validate_mesh(input).closed()) throw;
+    PackOptions filled = options;
+    filled.fill_holes = true;
+    PackResult r = pack_once(input, filled);
+    r.boundary_fallback = true;
+    r.repair.notes.push_back("the remesher could not keep the open boundary (" + std::string(e.what()) + "): its " +
+                             std::to_string(r.repair.holes_filled) + " boundary loop(s) were filled with fans instead");
+    return r;
+  }
 }
 
 }  // namespace prm::pipeline

@@ -88,12 +88,15 @@ inline Measured pack_and_check(const std::string& name, const Mesh& input, doubl
   m.max = d.rel(d.max);
   EXPECT_LE(m.rms, target);
   // The boundary vertices are the input's boundary vertices and the grid's crossings of its boundary edges, never
-  // moved by the remesher: only the quantization moves them (rounding, half a step per coordinate, and the
-  // separation of vertices that rounding would put on one point, up to two steps; quantized_separation.h).
+  // moved by the remesher: only the quantization moves them, by rounding (half a step per coordinate) or, for a
+  // vertex that rounding would put on another's point or a triangle it would flatten, to a free quantization point
+  // up to three steps away per coordinate (quantized_separation.h). So the bound is the larger of the target and
+  // 3 sqrt(3) steps. (The stream's step is often larger than an RMS target: at 2e-4, 11 bits, about 5e-4 of the
+  // diagonal; the boundary is then within the quantization, not within the target.)
   const double deviation = boundary_deviation(r.repaired ? r.repaired_input : input, out);
   m.boundary = d.rel(deviation);
   m.boundary_steps = deviation / r.remesh.prm.frame.step;
-  EXPECT_LE(deviation, std::max(target * d.diagonal, 2.0 * std::sqrt(3.0) * r.remesh.prm.frame.step))
+  EXPECT_LE(deviation, std::max(target * d.diagonal, 3.0 * std::sqrt(3.0) * r.remesh.prm.frame.step))
       << "boundary deviation " << m.boundary << " of the diagonal, " << m.boundary_steps << " steps";
   std::printf("%s: boundary loops %zu in, %zu out; %zu -> %u vertices; RMS %.3e, max %.3e of the diagonal; "
               "boundary vertices within %.3e of the diagonal (%.2f steps of %d bits); %zu bytes\n",

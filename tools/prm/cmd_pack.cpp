@@ -162,6 +162,7 @@ void add_pack_command(CLI::App& root) {
       j["holes_closed"] = r.repair.holes_filled;
       j["boundary_loops_in"] = r.boundary_loops_in;
       j["boundary_loops_out"] = r.boundary_loops_out;
+      j["boundary_fallback"] = r.boundary_fallback;
       j["changes"] = changes;
       j["notes"] = r.repair.notes;
       j["grid_size"] = g;

@@ -100,6 +100,9 @@ struct PackResult {
   bool repaired = false;        // the input had pinches or degenerate faces (or holes, with fill_holes)
   size_t boundary_loops_in = 0;   // of the input after the repair's pinch splits, before any hole is filled
   size_t boundary_loops_out = 0;  // of the piecewise regular mesh (the stream's; RepairReport::holes_filled: filled)
+  // Without fill_holes: the remesher could not keep the boundary (an invariant broke, std::logic_error) and pack
+  // filled the holes instead, with a note in repair.notes saying so.
+  bool boundary_fallback = false;
   int bits = 12;                // the stream's quantization
   codec::PrmOptions codec_options;  // what the stream was encoded with (height_lambda; without `unrounded`)
   double step_scale = 1;        // the stream's step in units of 2^-bits of the extent
