@@ -1,5 +1,5 @@
-// The main job on one mesh (`prm pack`, bench/table1): close holes and fix what repair can fix, remesh into a
-// piecewise regular mesh that meets a target RMS error (paper §2), and encode it (spec/prm-format.md).
+// The main job on one mesh (`prm pack`, bench/table1): fix what repair can fix (holes stay open unless fill_holes),
+// remesh into a piecewise regular mesh that meets a target RMS error (paper §2), and encode it (spec/prm-format.md).
 #pragma once
 
 #include <cstdint>
@@ -117,7 +117,7 @@ struct PackResult {
   double seconds_repair = 0, seconds_remesh = 0, seconds_encode = 0;
 };
 
-// Throws prm::InputError on input the repair cannot make a closed manifold, remesh::TargetNotReached when no grid
+// Throws prm::InputError on input the repair cannot make an oriented manifold, remesh::TargetNotReached when no grid
 // size meets target_error, and prm::InputError with the codec's message if the PRM cannot be encoded (a bug).
 PackResult pack(const Mesh& input, const PackOptions& options);
 
