@@ -110,6 +110,7 @@ Result measure(const std::string& name, const std::string& path, double target, 
   prm::pipeline::PackOptions po;
   po.bits = bits;
   po.effort = prm::pipeline::kMaxEffort;  // the paper comparison: the smallest stream the exhaustive search finds
+  po.fill_holes = true;  // the paper's protocol: holes closed by fans (paper §4; pack keeps them open by default)
   if (grid_size > 0)
     po.grid_size = grid_size;
   else

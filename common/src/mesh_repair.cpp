@@ -155,7 +155,7 @@ size_t split_pinched_vertices(Mesh& m) {
 
 }  // namespace
 
-Mesh repair_mesh(const Mesh& in, RepairReport* report) {
+Mesh repair_mesh(const Mesh& in, RepairReport* report, const RepairOptions& options) {
   RepairReport local;
   RepairReport& r = report ? *report : local;
   r = RepairReport{};
@@ -254,7 +254,7 @@ Mesh repair_mesh(const Mesh& in, RepairReport* report) {
   }
 
   // Close each loop with a fan around its centroid; the fan traverses the loop's edges backwards.
-  for (uint32_t start = 0; start < n_now && boundary_edges; ++start) {
+  for (uint32_t start = 0; start < n_now && boundary_edges && options.fill_holes; ++start) {
     if (next[start] == UINT32_MAX) continue;
     std::vector<uint32_t> loop;
     for (uint32_t v = start; next[v] != UINT32_MAX;) {

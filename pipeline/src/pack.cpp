@@ -308,13 +308,18 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
   ProgressJob progress(one_attempt ? 1 : plan.exhaustive ? kExpectedExhaustiveAttempts : plan.steps,
                        kExpectedGridRounds + (rate_distortion ? plan.lambda_rounds : 0));
   ProgressJob::stage("repair");
-  // Paper §2: the remesher needs a closed, consistently oriented manifold; the bunny's holes are closed by fans first.
+  // The remesher needs a consistently oriented 2-manifold. Its boundary loops stay open (issue 22: a range scan is
+  // an open surface), unless fill_holes closes them with the paper's fans (paper §4, the bunny protocol).
   const MeshReport check = validate_mesh(input);
   Mesh closed;
   RepairReport repair;
-  const bool repaired = !check.ready_for_remesh();
-  if (repaired) closed = repair_mesh(input, &repair);  // throws InputError when it cannot be made a closed manifold
+  const bool ready = check.clean() && check.manifold() && check.oriented() && (check.closed() || !options.fill_holes);
+  const bool repaired = !ready;
+  RepairOptions repair_options;
+  repair_options.fill_holes = options.fill_holes;
+  if (repaired) closed = repair_mesh(input, &repair, repair_options);  // throws InputError when it cannot
   const Mesh& source = repaired ? closed : input;
+  const size_t loops_in = repaired ? validate_mesh(source).boundary_loops + repair.holes_filled : check.boundary_loops;
   const double seconds_repair = seconds_since(t0);
   ProgressJob::stage("reliefs");
   MetroOptions mo;
@@ -441,11 +446,34 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
     out.seconds_remesh = seconds - out.seconds_encode;  // the whole search
   }
   out.remesh_rounds = rounds;
+  out.boundary_loops_in = loops_in;
+  out.boundary_loops_out = validate_mesh(out.remesh.prm.mesh).boundary_loops;
   out.seconds_repair = seconds_repair;
   out.repaired = repaired;
   out.repair = repair;
   if (repaired) out.repaired_input = std::move(closed);
   return out;
+}
+
+// pack_prm on an open surface: its boundary loops are kept (issue 22) unless fill_holes; when the remesher cannot keep
+// them (a broken invariant, std::logic_error), the paper's protocol instead, named in the report
+// (RepairReport::notes) and by boundary_fallback. Never a crash.
+PackResult pack_prm_open(const Mesh& input, const PackOptions& options, const MetroReference* input_reference) {
+  if (options.fill_holes) return pack_prm(input, options, input_reference);
+  try {
+    return pack_prm(input, options, input_reference);
+  } catch (const std::invalid_argument&) {
+    throw;
+  } catch (const std::logic_error& e) {
+    if (validate_mesh(input).closed()) throw;
+    PackOptions filled = options;
+    filled.fill_holes = true;
+    PackResult r = pack_prm(input, filled, input_reference);
+    r.boundary_fallback = true;
+    r.repair.notes.push_back("the remesher could not keep the open boundary (" + std::string(e.what()) + "): its " +
+                             std::to_string(r.repair.holes_filled) + " boundary loop(s) were filled with fans instead");
+    return r;
+  }
 }
 
 }  // namespace
@@ -497,6 +525,8 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
     out.mode_reason = std::move(reason);
     out.general_candidate = general;
     out.input_vertices = input.num_vertices();
+    // The general stream codes the input as it is: its boundary loops are the input's.
+    out.boundary_loops_in = out.boundary_loops_out = validate_mesh(input).boundary_loops;
     return out;
   };
   if (mode == PackMode::general) return general_result("--mode general");
@@ -506,7 +536,7 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
   PackResult out;
   const auto t0 = std::chrono::steady_clock::now();
   try {
-    out = pack_prm(input, options, input_reference.get());
+    out = pack_prm_open(input, options, input_reference.get());
     prm.made = true;
   } catch (const remesh::TargetNotReached& e) {
     if (mode == PackMode::prm || !general.made) {

@@ -90,7 +90,7 @@ bool SeamOptimizer::repair_face(FH f) {
 
 // For repairs: the collapse x -> y removes at least one bad triangle and turns no good triangle bad.
 bool SeamOptimizer::collapse_improves(HH h) {
-  if (!mesh_.is_collapse_ok(h)) return false;
+  if (!mesh_.is_collapse_ok(h) || moves_boundary(h)) return false;
   const VH x = mesh_.from_vertex_handle(h), y = mesh_.to_vertex_handle(h);
   const Vec3 py = pos(y), px = pos(x);
   int bad_before = 0, bad_after = 0;
@@ -111,7 +111,7 @@ bool SeamOptimizer::collapse_improves(HH h) {
 // (Non-grid vertices may sit anywhere; the move is a fraction of a grid step, along the surface.)
 bool SeamOptimizer::relocate_vertex(FH f, bool allow_lattice) {
   for (auto v : mesh_.fv_range(f)) {
-    if (mv(v).lattice && !allow_lattice) continue;
+    if ((mv(v).lattice && !allow_lattice) || mesh_.is_boundary(v)) continue;  // the open boundary stays
     Vec3 centroid{0, 0, 0};
     int n = 0;
     for (auto w : mesh_.vv_range(v)) {
@@ -229,10 +229,10 @@ bool SeamOptimizer::collapse_face(FH f) {
     if (!ok || checked == 0) continue;
     const VH x1 = corner[(k + 1) % 3], x2 = corner[(k + 2) % 3];
     HH h1 = mesh_.find_halfedge(x1, y);
-    if (!h1.is_valid() || !mesh_.is_collapse_ok(h1)) continue;
+    if (!h1.is_valid() || !mesh_.is_collapse_ok(h1) || moves_boundary(h1)) continue;
     mesh_.collapse(h1);
     const HH h2 = mesh_.find_halfedge(x2, y);
-    if (h2.is_valid() && mesh_.is_collapse_ok(h2)) mesh_.collapse(h2);
+    if (h2.is_valid() && mesh_.is_collapse_ok(h2) && !moves_boundary(h2)) mesh_.collapse(h2);
     return true;
   }
   return false;

@@ -80,10 +80,9 @@ PrmMesh resample_and_merge(const LayoutInput& layout, const ResampleOptions& opt
   for (int32_t r : face_relief)
     if (r < 0 || static_cast<size_t>(r) >= st.reliefs) throw std::invalid_argument("face_relief out of range");
 
+  // An open edge (no face across) is part of the mesh boundary: a seam with no neighbour, which the slicing keeps
+  // (its vertices are relief-boundary vertices), the merge leaves open and the seam passes never move.
   const auto adjacency = face_adjacency(refined);
-  for (const auto& a : adjacency)
-    for (int32_t g : a)
-      if (g < 0) throw InputError("the mesh has a boundary: close its holes first (prm repair)");
   st.generic_moves = make_generic(refined, face_relief, prm.relief_axis, adjacency, prm.frame, prm.lattice);
 
   ReliefMeshView view;

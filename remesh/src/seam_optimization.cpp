@@ -58,7 +58,7 @@ SeamStats SeamOptimizer::run() {
 
 // Collapse x -> y leaves every surviving triangle around x valid?
 bool SeamOptimizer::collapse_ok(HH h) {
-  if (!mesh_.is_collapse_ok(h)) return false;
+  if (!mesh_.is_collapse_ok(h) || moves_boundary(h)) return false;
   const VH x = mesh_.from_vertex_handle(h), y = mesh_.to_vertex_handle(h);
   const Vec3 py = pos(y);
   for (auto oh : mesh_.voh_range(x)) {

@@ -35,7 +35,7 @@ struct SeamStats {
   size_t non_lattice_vertices = 0;
 };
 
-// input: the input surface (a closed 2-manifold); input_normals: unit normal of every input face
+// input: the input surface (a 2-manifold; its boundary, if any, is the merged mesh's, which no pass moves); input_normals: unit normal of every input face
 // (MergedVertex::source_face indexes it); input_tree: the input's faces, for the normal of the input nearest to a
 // triangle (all the nearest, when the nearest point is on an edge or a corner). On return, mesh has no deleted
 // elements.

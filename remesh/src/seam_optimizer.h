@@ -35,6 +35,9 @@ class SeamOptimizer {
 
   // seam_optimization.cpp: the moves several passes try.
   bool collapse_ok(HH h);
+  // An open surface keeps its boundary where it is: no collapse removes a vertex of the mesh boundary (the input's
+  // boundary, refined by the grid crossings; every other edge has two faces after the loop fill).
+  bool moves_boundary(HH h) const { return mesh_.is_boundary(mesh_.from_vertex_handle(h)); }
   bool joins_reliefs(EH e) const;
 
   // The quad of a flippable edge: faces (a, b, c) and (b, a, d), which a flip turns into (c, a, d) and (d, b,

@@ -1,7 +1,8 @@
 // prm pack IN -o OUT.prm (--target-error E | --grid G | --grid-fraction F) [--mode prm|general|auto] [--tau T]
-// [--bits B] [--json]: the main job. Close holes and fix what repair can fix, remesh into a piecewise regular mesh
-// (paper §2), encode it (spec/prm-format.md); with --mode auto also code the input itself through the general path and
-// keep the smaller stream; report which, sizes, error and times.
+// [--bits B] [--fill-holes] [--json]: the main job. Fix what repair can fix (boundary loops stay open unless
+// --fill-holes), remesh into a piecewise regular mesh (paper §2), encode it (spec/prm-format.md); with --mode auto
+// also code the input itself through the general path and keep the smaller stream; report which, sizes, error and
+// times.
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
@@ -26,11 +27,11 @@ void add_pack_command(CLI::App& root) {
     int bits = 0, sweeps = 4, effort = pipeline::kDefaultEffort;
     std::string max_version = "1.4", mode = "auto";
     size_t samples = 0;
-    bool json = false, no_fit = false, round_heights = false, fallback = false;
+    bool json = false, no_fit = false, round_heights = false, fallback = false, fill_holes = false;
     double error_flip_weight = remesh::kDefaultErrorFlipWeight;
   };
   auto opt = std::make_shared<Options>();
-  cmd->add_option("input", opt->input, "Mesh file (OBJ/PLY/OFF/STL/glTF); holes are closed first")
+  cmd->add_option("input", opt->input, "Mesh file (OBJ/PLY/OFF/STL/glTF); its boundary loops stay open unless --fill-holes")
       ->required()
       ->check(CLI::ExistingFile);
   cmd->add_option("-o,--output", opt->output, "Output .prm stream, or .glb/.gltf: a glTF asset with PRM_mesh_compression (a glTF input keeps its whole scene, each triangle primitive remeshed in its own frame)")->required();
@@ -88,6 +89,9 @@ void add_pack_command(CLI::App& root) {
   cmd->add_flag("--fallback", opt->fallback,
                 "With a .glb/.gltf output: also store the decoded geometry uncompressed, so that loaders without "
                 "PRM_mesh_compression show it (the extension is then not required)");
+  cmd->add_flag("--fill-holes", opt->fill_holes,
+                "Close every boundary loop with a triangle fan around its centroid before remeshing (the paper's bunny "
+                "protocol, bench/table1). Default: the output keeps the input's boundary loops");
   cmd->add_flag("--json", opt->json, kJsonFlagHelp);
   cmd->callback([opt] {
     if (is_prm_stream_path(opt->input) && is_gltf_file_path(opt->output))
@@ -114,6 +118,7 @@ void add_pack_command(CLI::App& root) {
               : opt->mode == "general" ? pipeline::PackMode::general : pipeline::PackMode::automatic;
     if (po.mode == pipeline::PackMode::general && opt->target <= 0 && opt->bits <= 0)
       throw CLI::ValidationError("pack", "--mode general needs --target-error or --bits");
+    po.fill_holes = opt->fill_holes;
     if (is_gltf_file_path(opt->output)) return run_gltf_pack(opt->input, opt->output, po, opt->fallback, opt->json);
     note_gltf_to_prm(opt->input);
     ReadReport read;
@@ -199,6 +204,9 @@ void add_pack_command(CLI::App& root) {
       j["n_r"] = rep.vertices;
       j["n_r_over_n_o"] = n_o > 0 ? rep.vertices / n_o : 0.0;
       j["holes_closed"] = r.repair.holes_filled;
+      j["boundary_loops_in"] = r.boundary_loops_in;
+      j["boundary_loops_out"] = r.boundary_loops_out;
+      j["boundary_fallback"] = r.boundary_fallback;
       j["changes"] = changes;
       j["notes"] = notes;
       j["bits"] = r.bits;
@@ -233,6 +241,9 @@ void add_pack_command(CLI::App& root) {
                     input.num_vertices(), rep.vertices, n_o > 0 ? rep.vertices / n_o : 0.0, g,
                     static_cast<long long>(r.remesh.prm.lattice.A),
                     s.faces ? 100.0 * static_cast<double>(s.regular_faces) / s.faces : 0.0, rep.regular_patches);
+      std::printf("  boundary loops: %zu in, %zu out", r.boundary_loops_in, r.boundary_loops_out);
+      if (r.repair.holes_filled) std::printf(" (%zu filled: --fill-holes)", r.repair.holes_filled);
+      std::printf("\n");
       std::printf("  error of the decoded mesh to the input: RMS %.3e, max %.3e of the diagonal, at %d bits",
                   r.remesh.error.rms, r.remesh.error.max, r.bits);
       if (r.step_scale != 1) std::printf(" with the step x%.3f", r.step_scale);

@@ -10,6 +10,8 @@
 #include "codec_cli_util.h"
 #include "prm/codec.h"
 #include "prm/error.h"
+#include "prm/mesh_validate.h"
+#include "prm/pipeline/codec_bridge.h"
 
 namespace prm::cli {
 
@@ -101,6 +103,8 @@ void print_prm_stream_info(const std::string& path, bool json) {
   // described with its error and is invalid input (exit 2).
   const auto dec = codec::decode(bytes.data(), bytes.size(), {});
   const double v = s.vertices ? s.vertices : 1;
+  // The decoded mesh's boundary loops (the holes of spec §6.7: an open surface keeps them, issue 22).
+  const size_t boundary_loops = dec.ok() ? validate_mesh(pipeline::to_mesh(dec.value)).boundary_loops : 0;
   if (json) {
     nlohmann::json sections = nlohmann::json::array();
     for (const auto& sec : s.sections)
@@ -125,6 +129,7 @@ void print_prm_stream_info(const std::string& path, bool json) {
         {"sections", sections},
         {"crc32", s.crc},
         {"decodes", dec.ok()}});
+    if (dec.ok()) j["boundary_loops"] = boundary_loops;
     if (!dec.ok()) {
       j["decode_error"] = describe(dec.status);
       j["error"] = error_json(dec.status);
@@ -150,7 +155,7 @@ void print_prm_stream_info(const std::string& path, bool json) {
               s.crc);
   std::printf("  byte split: %s\n", describe_byte_split(stream_byte_split(bytes), s.vertices).c_str());
   if (dec.ok()) {
-    std::printf("  decodes: yes\n");
+    std::printf("  decodes: yes, %zu boundary loop(s)\n", boundary_loops);
     return;
   }
   std::printf("  decodes: no: %s\n", describe(dec.status).c_str());

@@ -20,13 +20,20 @@ struct RepairReport {
   std::vector<std::string> notes;
 };
 
+struct RepairOptions {
+  // Close every boundary loop with a fan (paper §4, the bunny protocol). False: the boundary loops stay, the result
+  // is an oriented 2-manifold with boundary (what `prm pack` remeshes by default; issue 22).
+  bool fill_holes = true;
+};
+
 // Removes repeated-index and duplicate faces, splits pinched vertices (one copy per extra fan of faces),
 // flips away zero-area slivers where that is safe (the others are kept and noted), closes every boundary loop
 // with a triangle fan around its centroid (paper §4) and drops unreferenced vertices. The result is closed,
 // manifold and consistently oriented. Throws prm::InputError naming the first offending edge for input that
 // cannot be repaired without guessing: an edge with three or more faces, or faces that are not consistently
-// oriented (after the face removals). Properties are dropped (the face set changes); comments are kept.
-Mesh repair_mesh(const Mesh& mesh, RepairReport* report = nullptr);
+// oriented (after the face removals). Properties are dropped (the face set changes); comments are kept. Without
+// options.fill_holes the loops stay open (and the result is closed only if the input was).
+Mesh repair_mesh(const Mesh& mesh, RepairReport* report = nullptr, const RepairOptions& options = {});
 
 // What a repair changed, one phrase per kind of change it made ("2 duplicate face(s) removed", "5 hole(s) closed
 // with 223 triangles"); empty when it changed nothing. (What it left as it was is in report.notes.)

@@ -1,5 +1,5 @@
-// The main job on one mesh (`prm pack`, bench/table1): close holes and fix what repair can fix, remesh into a
-// piecewise regular mesh that meets a target RMS error (paper §2), and encode it (spec/prm-format.md).
+// The main job on one mesh (`prm pack`, bench/table1): fix what repair can fix (holes stay open unless fill_holes),
+// remesh into a piecewise regular mesh that meets a target RMS error (paper §2), and encode it (spec/prm-format.md).
 #pragma once
 
 #include <cstdint>
@@ -74,6 +74,10 @@ struct PackOptions {
   // The newest format 1.N the stream may need (encode_any_mesh): 4, or 3 (no patch contexts), or 2 (no seam context).
   int max_minor = codec::kFormatMinorPatchContexts;
   int effort = kDefaultEffort;  // kMinEffort..kMaxEffort (see above)
+  // Close every boundary loop with a fan before remeshing (RepairOptions::fill_holes; the paper's bunny protocol).
+  // False: the output keeps the input's boundary loops (the remesher treats the mesh boundary as a seam with no
+  // neighbour and never moves its vertices).
+  bool fill_holes = false;
 };
 
 // What one effort level does (effort_plan()).
@@ -104,7 +108,12 @@ struct PackResult {
   remesh::RemeshResult remesh;  // the PRM (with the heights the stream holds), the error of the decoded mesh, the
                                 // grid search; with mode general only remesh.error is set (the general stream's)
   RepairReport repair;
-  bool repaired = false;        // the input had holes, pinches or degenerate faces
+  bool repaired = false;        // the input had pinches or degenerate faces (or holes, with fill_holes)
+  size_t boundary_loops_in = 0;   // of the input after the repair's pinch splits, before any hole is filled
+  size_t boundary_loops_out = 0;  // of the piecewise regular mesh (the stream's; RepairReport::holes_filled: filled)
+  // Without fill_holes: the remesher could not keep the boundary (an invariant broke, std::logic_error) and pack
+  // filled the holes instead, with a note in repair.notes saying so.
+  bool boundary_fallback = false;
   int bits = 12;                // the stream's quantization
   codec::PrmOptions codec_options;  // what the stream was encoded with (height_lambda; without `unrounded`)
   double step_scale = 1;        // the stream's step in units of 2^-bits of the extent
@@ -135,7 +144,7 @@ struct PackResult {
   size_t input_vertices = 0;    // n_o: the input's vertices (n_r = report.vertices)
 };
 
-// Throws prm::InputError on input the repair cannot make a closed manifold, remesh::TargetNotReached when no grid
+// Throws prm::InputError on input the repair cannot make an oriented manifold, remesh::TargetNotReached when no grid
 // size meets target_error, and prm::InputError with the codec's message if the PRM cannot be encoded (a bug); with
 // mode general, prm::InputError when the general path refuses the input and TargetNotReached when no bit depth meets
 // the target; with mode automatic, the PRM's error (naming the general path's too) when neither can be made.

@@ -89,7 +89,8 @@ class VertexBudgetExceeded : public TargetNotReached {
   using TargetNotReached::TargetNotReached;
 };
 
-// input: a closed 2-manifold (close holes first: prm::repair) whose coordinates pass check_remesh_range()
+// input: an oriented 2-manifold, closed or with boundary loops (which the output keeps: the mesh boundary is a seam
+// with no neighbour, its vertices never move; issue 22), whose coordinates pass check_remesh_range()
 // (prm::InputError otherwise). `error` may be empty unless target_error is set.
 RemeshResult remesh(const Mesh& input, const RemeshOptions& options, const ErrorFunction& error = {});
 

@@ -12,7 +12,7 @@ namespace prm::remesh {
 
 // A relief layout: a refined mesh whose faces are labelled by relief (see reliefs.h for how it is built).
 struct LayoutInput {
-  const Mesh* refined = nullptr;                      // closed 2-manifold
+  const Mesh* refined = nullptr;                      // 2-manifold, closed or with boundary (kept)
   const std::vector<int32_t>* face_relief = nullptr;  // relief id per refined face
   const std::vector<int>* relief_axis = nullptr;      // axis (0..5) per relief id
   const std::vector<int32_t>* source_face = nullptr;  // input face per refined face (null: the refined faces)

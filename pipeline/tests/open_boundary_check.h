@@ -1,0 +1,108 @@
+// The checks of issue 22's open-boundary tests: pack an open mesh keeping its holes, decode, and check the loops,
+// the manifold, the boundary's place and the RMS error (pack_open_boundary_test.cpp, pack_open_boundary_real_test.cpp).
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <vector>
+
+#include "prm/mesh_validate.h"
+#include "prm/metro_distance.h"
+#include "prm/pipeline/codec_bridge.h"
+#include "prm/pipeline/pack.h"
+#include "prm/vec3.h"
+
+namespace prm::test {
+
+using prm::Mesh;
+using prm::Vec3;
+
+// The boundary edges of a manifold, oriented mesh: half-edges whose reverse no face has.
+inline std::vector<std::array<uint32_t, 2>> boundary_edges(const Mesh& m) {
+  std::vector<std::array<uint32_t, 2>> he;
+  for (const prm::Tri& t : m.triangles)
+    for (int k = 0; k < 3; ++k) he.push_back({t[k], t[(k + 1) % 3]});
+  std::vector<std::array<uint32_t, 2>> sorted = he;
+  std::sort(sorted.begin(), sorted.end());
+  std::vector<std::array<uint32_t, 2>> out;
+  for (const auto& e : he)
+    if (!std::binary_search(sorted.begin(), sorted.end(), std::array<uint32_t, 2>{e[1], e[0]})) out.push_back(e);
+  return out;
+}
+
+inline double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
+  const Vec3 ab = b - a;
+  const double l2 = prm::dot(ab, ab);
+  const double t = l2 > 0 ? std::clamp(prm::dot(p - a, ab) / l2, 0.0, 1.0) : 0.0;
+  return prm::norm(p - (a + ab * t));
+}
+
+// The largest distance from a boundary vertex of `out` to the boundary polyline of `in` (model units).
+inline double boundary_deviation(const Mesh& in, const Mesh& out) {
+  const auto ein = boundary_edges(in), eout = boundary_edges(out);
+  double worst = 0;
+  for (const auto& e : eout) {
+    const Vec3& p = out.positions[e[0]];
+    double best = HUGE_VAL;
+    for (const auto& f : ein) best = std::min(best, point_segment_distance(p, in.positions[f[0]], in.positions[f[1]]));
+    worst = std::max(worst, best);
+  }
+  return worst;
+}
+
+struct Measured {
+  size_t loops_in = 0, loops_out = 0;
+  double rms = 0, max = 0, boundary = 0, boundary_steps = 0;  // rms, max, boundary: fractions of the diagonal
+};
+
+// Packs `input` at `target` keeping its holes and checks the result; returns what it measured.
+inline Measured pack_and_check(const std::string& name, const Mesh& input, double target) {
+  SCOPED_TRACE(name);
+  Measured m;
+  prm::pipeline::PackOptions o;
+  o.target_error = target;
+  const prm::pipeline::PackResult r = prm::pipeline::pack(input, o);
+  const auto decoded = prm::codec::decode(r.stream.data(), r.stream.size());
+  EXPECT_TRUE(decoded.ok()) << decoded.status.message;
+  if (!decoded.ok()) return m;
+  const Mesh out = prm::pipeline::to_mesh(decoded.value);
+  const prm::MeshReport before = prm::validate_mesh(r.repaired ? r.repaired_input : input);
+  const prm::MeshReport after = prm::validate_mesh(out);
+  m.loops_in = before.boundary_loops;
+  m.loops_out = after.boundary_loops;
+  EXPECT_GT(m.loops_in, 0u);
+  EXPECT_EQ(r.repair.holes_filled, 0u);
+  EXPECT_EQ(r.boundary_loops_in, m.loops_in);
+  EXPECT_EQ(r.boundary_loops_out, m.loops_out);
+  EXPECT_EQ(m.loops_out, m.loops_in);
+  EXPECT_TRUE(after.manifold() && after.oriented()) << after.non_manifold_edges << " non-manifold edges, "
+                                                    << after.non_manifold_vertices << " pinched vertices";
+  EXPECT_EQ(after.components, before.components);
+  const prm::DistanceReport d = prm::metro_distance(r.repaired ? r.repaired_input : input, out);
+  m.rms = d.rel(d.rms);
+  m.max = d.rel(d.max);
+  EXPECT_LE(m.rms, target);
+  // The boundary vertices are the input's boundary vertices and the grid's crossings of its boundary edges, never
+  // moved by the remesher: only the quantization moves them, by rounding (half a step per coordinate) or, for a
+  // vertex that rounding would put on another's point or a triangle it would flatten, to a free quantization point
+  // up to three steps away per coordinate (quantized_separation.h). So the bound is the larger of the target and
+  // 3 sqrt(3) steps. (The stream's step is often larger than an RMS target: at 2e-4, 11 bits, about 5e-4 of the
+  // diagonal; the boundary is then within the quantization, not within the target.)
+  const double deviation = boundary_deviation(r.repaired ? r.repaired_input : input, out);
+  m.boundary = d.rel(deviation);
+  m.boundary_steps = deviation / r.remesh.prm.frame.step;
+  EXPECT_LE(deviation, std::max(target * d.diagonal, 3.0 * std::sqrt(3.0) * r.remesh.prm.frame.step))
+      << "boundary deviation " << m.boundary << " of the diagonal, " << m.boundary_steps << " steps";
+  std::printf("%s: boundary loops %zu in, %zu out; %zu -> %u vertices; RMS %.3e, max %.3e of the diagonal; "
+              "boundary vertices within %.3e of the diagonal (%.2f steps of %d bits); %zu bytes\n",
+              name.c_str(), m.loops_in, m.loops_out, input.num_vertices(), r.report.vertices, m.rms, m.max,
+              m.boundary, m.boundary_steps, r.bits, r.stream.size());
+  return m;
+}
+
+}  // namespace prm::test

@@ -1,0 +1,96 @@
+// Issue 22: `pack` keeps the boundary loops of an open surface. For each mesh: the decoded stream is an oriented
+// 2-manifold with as many boundary loops as the input, every decoded boundary vertex lies near the input's boundary
+// polyline, and the decoded mesh meets the target RMS error (measured here again, independently of pack's search).
+// The cases are generated here: a height-field terrain, a flat plane, a closed mesh cut by a plane (the real open
+// meshes are in pack_open_boundary_real_test.cpp, heavy).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "open_boundary_check.h"
+#include "prm/mesh_io.h"
+
+namespace {
+
+using prm::Mesh;
+using prm::Vec3;
+using prm::test::Measured;
+using prm::test::pack_and_check;
+
+Mesh height_field(int n, double (*h)(double, double)) {
+  Mesh m;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) {
+      const double x = static_cast<double>(i) / n, y = static_cast<double>(j) / n;
+      m.positions.push_back({x, y, h(x, y)});
+    }
+  auto id = [n](int i, int j) { return static_cast<uint32_t>(j * (n + 1) + i); };
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
+      m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
+    }
+  return m;
+}
+
+// The faces of `closed` whose centroid lies below the plane z = the middle of its bounding box (unused vertices
+// dropped): a closed scan cut open.
+Mesh cut_below_middle(const Mesh& closed) {
+  double lo = HUGE_VAL, hi = -HUGE_VAL;
+  for (const Vec3& p : closed.positions) lo = std::min(lo, p[2]), hi = std::max(hi, p[2]);
+  const double z = 0.5 * (lo + hi);
+  Mesh cut;
+  std::vector<uint32_t> id(closed.positions.size(), UINT32_MAX);
+  for (const prm::Tri& t : closed.triangles) {
+    const double c = (closed.positions[t[0]][2] + closed.positions[t[1]][2] + closed.positions[t[2]][2]) / 3;
+    if (c > z) continue;
+    prm::Tri u;
+    for (int k = 0; k < 3; ++k) {
+      if (id[t[k]] == UINT32_MAX) {
+        id[t[k]] = static_cast<uint32_t>(cut.positions.size());
+        cut.positions.push_back(closed.positions[t[k]]);
+      }
+      u[k] = id[t[k]];
+    }
+    cut.triangles.push_back(u);
+  }
+  return cut;
+}
+
+TEST(PackOpenBoundary, TerrainKeepsItsBorder) {
+  const Mesh terrain = height_field(80, [](double x, double y) {
+    return 0.08 * std::sin(5 * x) * std::cos(4 * y) + 0.05 * std::sin(11 * x + 3 * y);
+  });
+  const Measured m = pack_and_check("terrain 81x81", terrain, 2e-4);
+  EXPECT_EQ(m.loops_in, 1u);
+}
+
+TEST(PackOpenBoundary, PlaneIsNotCappedByAFan) {
+  const Mesh plane = height_field(30, [](double, double) { return 0.0; });
+  const Measured m = pack_and_check("plane 31x31", plane, 2e-4);
+  EXPECT_EQ(m.loops_in, 1u);
+}
+
+TEST(PackOpenBoundary, ClosedScanCutByAPlane) {
+  const Mesh spot = prm::read_mesh(std::string(PRM_SHARED_MESHES) + "/spot.obj");
+  ASSERT_EQ(prm::validate_mesh(spot).boundary_loops, 0u);
+  pack_and_check("spot cut at mid-height", cut_below_middle(spot), 2e-4);
+}
+
+TEST(PackOpenBoundary, FillHolesClosesEveryLoop) {
+  const Mesh terrain = height_field(40, [](double x, double y) { return 0.1 * std::sin(4 * x + 2 * y); });
+  prm::pipeline::PackOptions o;
+  o.target_error = 5e-4;
+  o.fill_holes = true;
+  const prm::pipeline::PackResult r = prm::pipeline::pack(terrain, o);
+  EXPECT_EQ(r.boundary_loops_in, 1u);
+  EXPECT_EQ(r.repair.holes_filled, 1u);
+  EXPECT_EQ(r.boundary_loops_out, 0u);
+  const auto decoded = prm::codec::decode(r.stream.data(), r.stream.size());
+  ASSERT_TRUE(decoded.ok());
+  EXPECT_TRUE(prm::validate_mesh(prm::pipeline::to_mesh(decoded.value)).closed());
+}
+
+}  // namespace
