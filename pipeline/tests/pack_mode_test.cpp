@@ -69,6 +69,19 @@ TEST(PackMode, CubeIsCodedAsItIs) {
   EXPECT_LE(decoded_rms(cube, r), o.target_error);
 }
 
+// No piecewise regular mesh meets 1e-6 within the remesher's vertex budget: auto codes the cube as it is and says why.
+TEST(PackMode, UnreachableTargetIsCodedAsItIs) {
+  const prm::Mesh cube = prm::test::box(1, 1, 1, 1);
+  PackOptions o;
+  o.target_error = 1e-6;
+  const PackResult r = prm::pipeline::pack(cube, o);
+  EXPECT_EQ(r.mode, PackMode::general);
+  EXPECT_FALSE(r.prm_candidate.made);
+  EXPECT_FALSE(r.prm_candidate.refused.empty());
+  EXPECT_NE(r.mode_reason.find("no piecewise regular mesh could be made"), std::string::npos) << r.mode_reason;
+  EXPECT_LE(decoded_rms(cube, r), o.target_error);
+}
+
 // Forced modes make the stream they name, each meeting the target.
 TEST(PackMode, ForcedModes) {
   const prm::Mesh input = prm::read_mesh(std::string(PRM_SHARED_MESHES) + "/spot.obj");
