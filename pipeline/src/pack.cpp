@@ -480,6 +480,7 @@ PackResult pack_prm_open(const Mesh& input, const PackOptions& options, const Me
 
 PackResult pack(const Mesh& input, const PackOptions& options) {
   check_remesh_range(input);  // before anything squares a length
+  if (options.bits <= 0 && options.step_scale <= 0) effort_plan(options.effort);  // refused before any work
   const bool has_target = options.target_error > 0;
   const PackMode mode = options.mode == PackMode::automatic && !has_target ? PackMode::prm : options.mode;
   // Both candidates are measured against the target with the PRM search's margin.
