@@ -482,7 +482,12 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
   check_remesh_range(input);  // before anything squares a length
   if (options.bits <= 0 && options.step_scale <= 0) effort_plan(options.effort);  // refused before any work
   const bool has_target = options.target_error > 0;
-  const PackMode mode = options.mode == PackMode::automatic && !has_target ? PackMode::prm : options.mode;
+  // --fill-holes asks for a closed output: the general path codes the input as it is, open, so auto is prm then.
+  const bool fill_open = options.fill_holes && validate_mesh(input).boundary_loops > 0;
+  if (fill_open && options.mode == PackMode::general)
+    throw std::invalid_argument("--fill-holes closes the input's boundary loops, which --mode general keeps as they are");
+  const PackMode mode =
+      options.mode == PackMode::automatic && (!has_target || fill_open) ? PackMode::prm : options.mode;
   // Both candidates are measured against the target with the PRM search's margin.
   const double target = kQuantizationMargin * options.target_error;
   MetroOptions mo;
@@ -584,7 +589,8 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
   out.mode = PackMode::prm;
   if (mode == PackMode::prm)
     out.mode_reason = options.mode == PackMode::prm ? "--mode prm"
-                                                    : "auto without a target error (a grid was given): prm";
+                      : fill_open ? "auto with --fill-holes on an open input: prm (the general path keeps the holes)"
+                                  : "auto without a target error (a grid was given): prm";
   else if (general.made)
     out.mode_reason = "auto: the piecewise regular stream (" + bytes_rms(prm) + ") is not larger than the general "
                       "one (" + bytes_rms(general) + ")";

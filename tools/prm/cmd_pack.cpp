@@ -118,6 +118,8 @@ void add_pack_command(CLI::App& root) {
               : opt->mode == "general" ? pipeline::PackMode::general : pipeline::PackMode::automatic;
     if (po.mode == pipeline::PackMode::general && opt->target <= 0 && opt->bits <= 0)
       throw CLI::ValidationError("pack", "--mode general needs --target-error or --bits");
+    if (po.mode == pipeline::PackMode::general && opt->fill_holes)
+      throw CLI::ValidationError("pack", "--fill-holes closes the input's holes, which --mode general keeps");
     po.fill_holes = opt->fill_holes;
     if (is_gltf_file_path(opt->output)) return run_gltf_pack(opt->input, opt->output, po, opt->fallback, opt->json);
     note_gltf_to_prm(opt->input);

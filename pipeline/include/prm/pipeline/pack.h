@@ -75,6 +75,7 @@ struct PackOptions {
   int max_minor = codec::kFormatMinorPatchContexts;
   int effort = kDefaultEffort;  // kMinEffort..kMaxEffort (see above)
   // Close every boundary loop with a fan before remeshing (RepairOptions::fill_holes; the paper's bunny protocol).
+  // The output is then closed: on an open input, mode automatic is prm and mode general std::invalid_argument.
   // False: the output keeps the input's boundary loops (the remesher treats the mesh boundary as a seam with no
   // neighbour and never moves its vertices).
   bool fill_holes = false;
