@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "always_inline.h"
 #include "clers_shared.h"
 #include "tail_table.h"
 
@@ -73,7 +74,7 @@ class SpiraleReversi {
     records_.push_back({r, 0, -1, 0});
     return r;
   }
-  void set_corner(uint32_t c, uint32_t record) {
+  PRM_WASM_INLINE void set_corner(uint32_t c, uint32_t record) {
     rec_[c] = record;
     const uint32_t r = find(record);
     Record& x = records_[r];
