@@ -42,7 +42,6 @@ inline PatchSet build_patches(const ClosedMesh& mesh, const std::vector<uint8_t>
   // Per triangle: 1 while it is regular and not yet in a patch (one load per neighbour looked at).
   std::vector<uint8_t> open(nt);
   for (uint32_t t = 0; t < nt; ++t) open[t] = cls[t] == kRegular;
-  ps.order.reserve(nt);  // at most every triangle, all decoded already
   ps.start.push_back(0);
   for (uint32_t t0 = 0; t0 < nt; ++t0) {
     if (!open[t0]) continue;
