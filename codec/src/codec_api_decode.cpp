@@ -70,13 +70,15 @@ Result<DecodedMesh> decode(const uint8_t* data, size_t size, const DecodeOptions
     const Section* pts = c.find(kSectionPatches);
     if (is && pts) {  // §2 a PRM: irregular triangles, patches, then the other vertices
       std::vector<uint8_t> cls, known;
+      std::vector<uint32_t> vertex_corner;  // §10.2, built by the patches, reused by the positions
       res.status = read_irregular_triangles(data + is->offset, is->size, is->offset, mesh,
                                             (h.flags & kFlagLersValence) != 0, cls);
       if (!res.ok()) return res;
       res.status = read_patches(data + pts->offset, pts->size, pts->offset, mesh, h.frame.bits, h.bbox_min,
-                                h.bbox_max, (h.flags & kFlagPatchContexts) != 0, cls, q, known);
+                                h.bbox_max, (h.flags & kFlagPatchContexts) != 0, cls, q, known, vertex_corner);
       if (!res.ok()) return res;
-      res.status = read_positions(data + ps->offset, ps->size, ps->offset, mesh, h.bbox_min, h.bbox_max, q, &known);
+      res.status = read_positions(data + ps->offset, ps->size, ps->offset, mesh, h.bbox_min, h.bbox_max, q, &known,
+                                  &vertex_corner);
     } else {
       res.status = read_positions(data + ps->offset, ps->size, ps->offset, mesh, h.bbox_min, h.bbox_max, q);
     }

@@ -16,6 +16,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "always_inline.h"
 #include "closed_mesh.h"
 #include "difference_patch_shared.h"
 #include "fan_walk.h"
@@ -196,7 +197,7 @@ class LpRaster {
   const std::vector<uint32_t>& order() const { return order_; }
 
   // The local ids at the 14 offsets around (i, j) (kNone where there is no vertex) and their mask.
-  uint32_t taps(int64_t i, int64_t j, std::array<uint32_t, kLpOffsets>& id) const {
+  PRM_WASM_INLINE uint32_t taps(int64_t i, int64_t j, std::array<uint32_t, kLpOffsets>& id) const {
     uint32_t mask = 0;
     if (dense_) {
       const int64_t b = index(i, j);

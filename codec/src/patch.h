@@ -59,9 +59,11 @@ Status write_patches(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, co
                      std::vector<uint32_t>* chosen = nullptr);
 
 // §8-§9 Decoder: positions of the patch vertices into q (3 per closed-mesh vertex), known[v] = 1 for them.
-// cls: per triangle kRegular / kIrregular / kDummyTriangle (§7).
+// cls: per triangle kRegular / kIrregular / kDummyTriangle (§7). vertex_corner: out, §10.2 Vertex_Corner of the
+// mesh, which the patches need and read_positions reuses (built once per stream).
 Status read_patches(const uint8_t* data, size_t size, uint64_t offset, const ClosedMesh& mesh, int bits,
                     const std::array<uint32_t, 3>& lo, const std::array<uint32_t, 3>& hi, bool contexts,
-                    const std::vector<uint8_t>& cls, std::vector<uint32_t>& q, std::vector<uint8_t>& known);
+                    const std::vector<uint8_t>& cls, std::vector<uint32_t>& q, std::vector<uint8_t>& known,
+                    std::vector<uint32_t>& vertex_corner);
 
 }  // namespace prm::codec

@@ -14,7 +14,8 @@ namespace prm::codec {
 
 Status read_patches(const uint8_t* data, size_t size, uint64_t offset, const ClosedMesh& mesh, int bits,
                     const std::array<uint32_t, 3>& lo, const std::array<uint32_t, 3>& hi, bool contexts,
-                    const std::vector<uint8_t>& cls, std::vector<uint32_t>& q, std::vector<uint8_t>& known) {
+                    const std::vector<uint8_t>& cls, std::vector<uint32_t>& q, std::vector<uint8_t>& known,
+                    std::vector<uint32_t>& vertex_corner_out) {
   q.assign(size_t{3} * mesh.num_vertices, 0);
   known.assign(mesh.num_vertices, 0);
   if (size < 4) return make_status(Error::truncated, "5.6", offset + size, "patch data shorter than 4 bytes");
@@ -57,9 +58,9 @@ Status read_patches(const uint8_t* data, size_t size, uint64_t offset, const Clo
   // §9.7.4 For the vertices without a tap set; only linear-prediction streams need it (Vertex_Corner is O(T)).
   std::optional<LpNeighbours> nb;
   if (predicted) nb.emplace(mesh, known, q.data(), local, global);
-  // §10.2 Vertex_Corner, for the base references (§8.4.1): the one LpNeighbours made, if any.
+  // §10.2 Vertex_Corner, for the base references (§8.4.1) and the positions (§10): the one LpNeighbours made, if any.
   std::vector<uint32_t> own_vertex_corner;
-  if (contexts && !predicted) vertex_corners(mesh, own_vertex_corner);
+  if (!predicted) vertex_corners(mesh, own_vertex_corner);
   const std::vector<uint32_t>& vertex_corner = predicted ? nb->vertex_corner : own_vertex_corner;
   std::array<int64_t, 2> previous{0, 0};
   const int64_t coord_bound = int64_t{1} << (bits + 1);
@@ -147,6 +148,7 @@ Status read_patches(const uint8_t* data, size_t size, uint64_t offset, const Clo
   if (!rc.finish())
     return rc.failed() ? make_status(Error::truncated, "5.5", offset + size, "the patch data ends early")
                        : make_status(Error::trailing_bytes, "5.6", offset + rc.consumed(), "bytes after the last patch");
+  vertex_corner_out = predicted ? std::move(nb->vertex_corner) : std::move(own_vertex_corner);
   return ok_status();
 }
 

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "always_inline.h"
 #include "closed_mesh.h"
 #include "difference_patch_shared.h"
 #include "fan_walk.h"
@@ -112,7 +113,7 @@ inline bool propagate_patch(const ClosedMesh& mesh, const PatchSet& ps, size_t p
   level.coord.clear();
   level.tris.clear();
   global.clear();
-  auto id_of = [&](uint32_t v) {
+  auto id_of = [&](uint32_t v) PRM_WASM_INLINE_LAMBDA {
     if (local[v] == kNone) {
       local[v] = static_cast<uint32_t>(global.size());
       global.push_back(v);

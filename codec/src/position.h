@@ -17,9 +17,11 @@ Status write_positions(const ClosedMesh& mesh, const std::vector<uint32_t>& q, c
                        const std::vector<uint8_t>* known = nullptr);
 
 // Fills q (3 per closed-mesh vertex; dummies get 0). With `known`, q already holds those vertices' positions and
-// only the others are decoded.
+// only the others are decoded. `vertex_corner`: §10.2 Vertex_Corner of the mesh if the caller has it (built here
+// otherwise).
 Status read_positions(const uint8_t* data, size_t size, uint64_t offset, const ClosedMesh& mesh,
                       const std::array<uint32_t, 3>& lo, const std::array<uint32_t, 3>& hi,
-                      std::vector<uint32_t>& q, const std::vector<uint8_t>* known = nullptr);
+                      std::vector<uint32_t>& q, const std::vector<uint8_t>* known = nullptr,
+                      const std::vector<uint32_t>* vertex_corner = nullptr);
 
 }  // namespace prm::codec

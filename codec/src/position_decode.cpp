@@ -38,15 +38,21 @@ inline bool decode_residual(RangeDecoder& rc, ResidualModels& m, int axis, int c
 
 Status read_positions(const uint8_t* data, size_t size, uint64_t offset, const ClosedMesh& mesh,
                       const std::array<uint32_t, 3>& lo, const std::array<uint32_t, 3>& hi,
-                      std::vector<uint32_t>& q, const std::vector<uint8_t>* known) {
+                      std::vector<uint32_t>& q, const std::vector<uint8_t>* known,
+                      const std::vector<uint32_t>* vertex_corner) {
+  std::vector<uint32_t> own_vertex_corner;
+  auto corners = [&]() -> const std::vector<uint32_t>& {  // §10.2 Vertex_Corner: the caller's, or built here
+    if (vertex_corner) return *vertex_corner;
+    vertex_corners(mesh, own_vertex_corner);
+    return own_vertex_corner;
+  };
   if (!known) q.assign(size_t{3} * mesh.num_vertices, 0);
   uint32_t real = 0;  // vertices to decode here
   for (uint32_t v = 0; v < mesh.num_vertices; ++v) real += !mesh.is_dummy[v] && !(known && (*known)[v]);
   if (real == 0) {
     if (size != 0) return make_status(Error::trailing_bytes, "10", offset, "position data for no vertices");
     if (known) {  // §6.8 still holds for the vertices the patches placed
-      std::vector<uint32_t> vc;
-      vertex_corners(mesh, vc);
+      const std::vector<uint32_t>& vc = corners();
       for (uint32_t v = 0; v < mesh.num_vertices; ++v)
         if (vc[v] == UINT32_MAX) return make_status(Error::bad_connectivity, "6.4.8", offset, "a vertex has no triangle");
       DegreeOrder order(mesh, known);
@@ -58,8 +64,7 @@ Status read_positions(const uint8_t* data, size_t size, uint64_t offset, const C
   }
   // The vertex count is already bounded by the connectivity section (§4.3); the range decoder needs 4 bytes.
   if (size < 4) return make_status(Error::truncated, "5.6", offset + size, "position data shorter than 4 bytes");
-  std::vector<uint32_t> vc;
-  vertex_corners(mesh, vc);
+  const std::vector<uint32_t>& vc = corners();
   for (uint32_t v = 0; v < mesh.num_vertices; ++v)  // every id has a corner by §6.4; checked, not assumed
     if (vc[v] == UINT32_MAX)
       return make_status(Error::bad_connectivity, "6.4.8", offset, "a vertex has no triangle");

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "adaptive_model.h"
+#include "always_inline.h"
 #include "closed_mesh.h"
 #include "corner_table.h"
 #include "fan_walk.h"
@@ -54,7 +55,7 @@ class DegreeOrder {
   }
   bool done(uint32_t v) const { return state_[v] == kDone; }
   // A neighbour of the vertex being decoded: one more decoded neighbour if it is pending.
-  void push_neighbour(uint32_t w) {
+  PRM_WASM_INLINE void push_neighbour(uint32_t w) {
     if (state_[w] != kPending) return;
     const uint32_t d = ++degree_[w];
     buckets_[capped(d)].push_back(w);

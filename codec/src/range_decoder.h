@@ -9,12 +9,7 @@
 #include <cstdint>
 
 #include "adaptive_model.h"
-
-#if defined(__GNUC__) || defined(__clang__)
-#define PRM_ALWAYS_INLINE inline __attribute__((always_inline))
-#else
-#define PRM_ALWAYS_INLINE inline
-#endif
+#include "always_inline.h"
 
 namespace prm::codec {
 

@@ -39,19 +39,21 @@ struct PatchSet {
 inline PatchSet build_patches(const ClosedMesh& mesh, const std::vector<uint8_t>& cls) {
   PatchSet ps;
   const uint32_t nt = mesh.num_triangles();
-  std::vector<uint8_t> seen(nt, 0);
+  // Per triangle: 1 while it is regular and not yet in a patch (one load per neighbour looked at).
+  std::vector<uint8_t> open(nt);
+  for (uint32_t t = 0; t < nt; ++t) open[t] = cls[t] == kRegular;
   ps.start.push_back(0);
   for (uint32_t t0 = 0; t0 < nt; ++t0) {
-    if (cls[t0] != kRegular || seen[t0]) continue;
-    seen[t0] = 1;
+    if (!open[t0]) continue;
+    open[t0] = 0;
     size_t head = ps.order.size();
     ps.order.push_back(t0);
     while (head < ps.order.size()) {
       const uint32_t t = ps.order[head++];
       for (int k = 0; k < 3; ++k) {
         const uint32_t n = static_cast<uint32_t>(mesh.opp[3 * t + k]) / 3;
-        if (cls[n] == kRegular && !seen[n]) {
-          seen[n] = 1;
+        if (open[n]) {
+          open[n] = 0;
           ps.order.push_back(n);
         }
       }

@@ -79,7 +79,7 @@ inline double signed_cost_bits(const SignedIntModel& m, int64_t v, const BitMode
 inline double signed_cost_bits(const SignedIntModel& m, int64_t v) { return signed_cost_bits(m, v, m.sign); }
 
 // Returns false (and leaves v = 0) when the class exceeds max_class: the caller's bound on the magnitude.
-inline bool decode_signed(RangeDecoder& rc, SignedIntModel& m, int max_class, int64_t& v, BitModel& sign) {
+PRM_WASM_INLINE bool decode_signed(RangeDecoder& rc, SignedIntModel& m, int max_class, int64_t& v, BitModel& sign) {
   v = 0;
   if (rc.decode_bit(m.zero)) return true;
   const bool negative = rc.decode_bit(sign) != 0;

@@ -12,10 +12,7 @@ void SpiraleReversi::init(uint32_t num_triangles, uint32_t num_vertices) {
   num_vertices_ = num_vertices;
   opp_.reset(size_t{3} * num_triangles, -1);
   rec_.reset(size_t{3} * num_triangles, 0);
-  parent_.clear();
-  count_.clear();
-  id_.clear();
-  odd_.clear();
+  records_.clear();
   stack_.clear();
   closed_ = 0;
   decoded_ = 0;
@@ -27,10 +24,7 @@ void SpiraleReversi::reserve(uint32_t triangles) {
   const size_t t = std::min(triangles, num_triangles_);
   opp_.reserve_tail(3 * t);
   rec_.reserve_tail(3 * t);
-  parent_.reserve(t / 2 + 16);  // about one record per two triangles (V = T / 2 + 2 on a sphere)
-  count_.reserve(t / 2 + 16);
-  id_.reserve(t / 2 + 16);
-  odd_.reserve(t / 2 + 16);
+  records_.reserve(t / 2 + 16);  // about one record per two triangles (V = T / 2 + 2 on a sphere)
 }
 
 bool SpiraleReversi::fail(const char* message) {
@@ -73,10 +67,11 @@ int64_t SpiraleReversi::open_edge_out_of(uint32_t c) {
 uint32_t SpiraleReversi::gate_start_seam() {
   if (stack_.empty()) return 0;
   const uint32_t c0 = 3 * stack_.back();
-  auto odd = [&](uint32_t c) {
-    return (odd_[find(rec_[corner_next(c)])] | odd_[find(rec_[corner_prev(c)])]) != 0;
-  };
-  // One side: 1 odd vertex found, 0 the fan closed (every triangle seen), 2 an open edge or the bound.
+  auto odd = [&](uint32_t c) { return records_[find(rec_[c])].odd != 0; };
+  // One side: 1 odd vertex found, 0 the fan closed (every triangle seen), 2 an open edge or the bound. Crossing the
+  // edge opposite turn(c) into the triangle of d, the next triangle's two other vertices are the far end of that
+  // edge, tested already (a glued edge joins corners of the same records, §6.4.2), and the vertex of d itself: only
+  // that one is tested.
   auto walk = [&](uint32_t (*turn)(uint32_t)) {
     uint32_t c = c0;
     for (uint32_t k = 0; k < kSeamWalk; ++k) {
@@ -84,11 +79,11 @@ uint32_t SpiraleReversi::gate_start_seam() {
       if (d < 0) break;
       c = turn(static_cast<uint32_t>(d));
       if (c == c0) return 0u;
-      if (odd(c)) return 1u;
+      if (odd(static_cast<uint32_t>(d))) return 1u;
     }
     return 2u;
   };
-  if (odd(c0)) return 1;
+  if (odd(corner_next(c0)) || odd(corner_prev(c0))) return 1;
   const uint32_t forward = walk(corner_next);
   return forward == 2 ? walk(corner_prev) & 1u : forward;
 }
@@ -97,10 +92,11 @@ uint32_t SpiraleReversi::gate_start_seam() {
 // forward order of discovery (§6.6).
 bool SpiraleReversi::close_vertex(uint32_t record) {
   const uint32_t r = find(record);
-  if (id_[r] >= 0) return fail("a vertex is closed twice");
+  Record& x = records_[r];
+  if (x.id >= 0) return fail("a vertex is closed twice");
   if (closed_ >= num_vertices_) return fail("more vertices closed than the component sizes allow");
-  id_[r] = static_cast<int32_t>(num_vertices_ - 1 - closed_);
-  odd_[r] = count_[r] != 6;
+  x.id = static_cast<int32_t>(num_vertices_ - 1 - closed_);
+  x.odd = x.count != 6;
   ++closed_;
   return true;
 }
@@ -124,7 +120,7 @@ bool SpiraleReversi::apply(uint32_t t, uint8_t symbol) {
   switch (symbol) {
     case kC: {  // §6.4.4 attach by the right edge, then zip the left edge around the tip
       const uint32_t tip = find(rec_[ja]);
-      if (id_[tip] >= 0) return fail("C at a closed vertex");
+      if (records_[tip].id >= 0) return fail("C at a closed vertex");
       const int64_t e = open_edge_into(ja);
       if (e < 0 || static_cast<uint32_t>(e) == jg) return fail("C whose tip has no open edge to zip");
       glue(a, jg);
@@ -155,13 +151,13 @@ bool SpiraleReversi::apply(uint32_t t, uint8_t symbol) {
       const uint32_t ka = 3 * k, kb = ka + 1, kg = ka + 2;
       const uint32_t r1 = find(rec_[ja]), r2 = find(rec_[kb]);
       if (r1 == r2) return fail("S joins a vertex to itself");
-      if (id_[r1] >= 0 || id_[r2] >= 0) return fail("S at a closed vertex");
+      if (records_[r1].id >= 0 || records_[r2].id >= 0) return fail("S at a closed vertex");
       glue(a, jg);
       glue(b, kg);
       set_corner(b, rec_[jb]);
       set_corner(a, rec_[ka]);
-      parent_[r2] = r1;  // §6.4.5 the two records of the tip become one
-      count_[r1] += count_[r2];
+      records_[r2].parent = r1;  // §6.4.5 the two records of the tip become one
+      records_[r1].count += records_[r2].count;
       set_corner(v, r1);
       stack_.pop_back();
       stack_.back() = t;
@@ -191,13 +187,13 @@ bool SpiraleReversi::apply_handle(uint32_t t, const HandleEvent& event, uint32_t
   const uint32_t rq = find(rec_[corner_prev(pc)]);
   const uint32_t r1 = find(rec_[ja]);
   if (rq == r1) return fail("handle joins a vertex to itself");
-  if (id_[rq] >= 0 || id_[r1] >= 0) return fail("handle at a closed vertex");
+  if (records_[rq].id >= 0 || records_[r1].id >= 0) return fail("handle at a closed vertex");
   glue(a, jg);
   glue(b, pc);
   set_corner(b, rec_[jb]);
   set_corner(a, rec_[corner_next(pc)]);
-  parent_[rq] = r1;
-  count_[r1] += count_[rq];
+  records_[rq].parent = r1;
+  records_[r1].count += records_[rq].count;
   set_corner(v, r1);
   stack_.back() = t;
   return true;
@@ -240,11 +236,11 @@ bool SpiraleReversi::finish(std::vector<uint32_t>& corner_vertex) {
   if (!stack_.empty()) return fail("pieces left on the stack");
   if (closed_ != num_vertices_) return fail("vertex count differs from the component sizes and handles");
   // Vertex id of every record, then of every corner.
-  const uint32_t num_records = static_cast<uint32_t>(parent_.size());
+  const uint32_t num_records = static_cast<uint32_t>(records_.size());
   for (uint32_t r = 0; r < num_records; ++r) {
-    const int32_t id = id_[find(r)];
+    const int32_t id = records_[find(r)].id;
     if (id < 0) return fail("a vertex is never closed");
-    id_[r] = id;
+    records_[r].id = id;
   }
   if (decoded_ != num_triangles_ || opp_.first() != 0) return fail("triangles missing");
   std::vector<int32_t>& opp = opp_.all();  // every triangle is held now
@@ -255,16 +251,13 @@ bool SpiraleReversi::finish(std::vector<uint32_t>& corner_vertex) {
       non_manifold_ = false;
       return fail("an edge is left open");
     }
-    for (size_t i = c; i < c + 3; ++i) rec[i] = static_cast<uint32_t>(id_[rec[i]]);  // records become ids
+    for (size_t i = c; i < c + 3; ++i) rec[i] = static_cast<uint32_t>(records_[rec[i]].id);  // records become ids
     if (rec[c] == rec[c + 1] || rec[c + 1] == rec[c + 2] || rec[c] == rec[c + 2])
       return fail("a decoded triangle uses a vertex twice");
   }
   corner_vertex.swap(rec_.all());
   rec_.reset(0, 0);
-  std::vector<uint32_t>().swap(parent_);  // the records are done with
-  std::vector<uint32_t>().swap(count_);
-  std::vector<int32_t>().swap(id_);
-  std::vector<uint8_t>().swap(odd_);
+  std::vector<Record>().swap(records_);  // the records are done with
   // Every glued edge joins corners of the same records at both ends and records only merge through a triangle
   // glued to both (§6.4.2), so each vertex is one closed fan. That no two edges join the same pair of vertices is
   // checked while the fans are walked for the positions (§6.8, §10.3).

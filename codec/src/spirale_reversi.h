@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "always_inline.h"
 #include "clers_shared.h"
 #include "tail_table.h"
 
@@ -33,14 +34,14 @@ class SpiraleReversi {
   // §6.4.1 Starts a closed mesh of `num_triangles` triangles and `num_vertices` vertices (dummies included); allocates
   // nothing in proportion to them (§4.5).
   void init(uint32_t num_triangles, uint32_t num_vertices);
-  // Room ahead for the next `triangles` triangles (at most all of them), for a caller that trusts its counts (the
-  // encoder; the decoder does not, §4.5).
+  // Room ahead for the next `triangles` triangles (at most all of them): the encoder's own count, or the decoder's
+  // bound from the bytes of the symbols (§4.5, kReserveTrianglesPerByte), never the count the stream claims alone.
   void reserve(uint32_t triangles);
 
   // §6.5.2 Context inputs for the next symbol.
   uint32_t stack_depth() const { return static_cast<uint32_t>(stack_.size()); }
   uint32_t gate_start_count() {
-    return stack_.empty() ? 0 : count_[find(rec_[3 * stack_.back()])];
+    return stack_.empty() ? 0 : records_[find(rec_[3 * stack_.back()])].count;
   }
   // §6.5.2 Seam: 1 if a closed vertex of the decoded fan of the gate's start vertex has a valence other than 6.
   uint32_t gate_start_seam();
@@ -62,25 +63,23 @@ class SpiraleReversi {
 
  private:
   uint32_t find(uint32_t r) {
-    while (parent_[r] != r) {
-      parent_[r] = parent_[parent_[r]];
-      r = parent_[r];
+    while (records_[r].parent != r) {
+      records_[r].parent = records_[records_[r].parent].parent;
+      r = records_[r].parent;
     }
     return r;
   }
   uint32_t new_record() {
-    const uint32_t r = static_cast<uint32_t>(parent_.size());
-    parent_.push_back(r);
-    count_.push_back(0);
-    id_.push_back(-1);
-    odd_.push_back(0);
+    const uint32_t r = static_cast<uint32_t>(records_.size());
+    records_.push_back({r, 0, -1, 0});
     return r;
   }
-  void set_corner(uint32_t c, uint32_t record) {
+  PRM_WASM_INLINE void set_corner(uint32_t c, uint32_t record) {
     rec_[c] = record;
     const uint32_t r = find(record);
-    ++count_[r];
-    if (id_[r] >= 0) odd_[r] = count_[r] != 6;
+    Record& x = records_[r];
+    ++x.count;
+    if (x.id >= 0) x.odd = x.count != 6;
   }
   void glue(uint32_t c1, uint32_t c2) {
     opp_[c1] = static_cast<int32_t>(c2);
@@ -103,11 +102,16 @@ class SpiraleReversi {
 
   TailTable<int32_t> opp_;
   TailTable<uint32_t> rec_;
-  std::vector<uint32_t> parent_, count_;
-  std::vector<int32_t> id_;
-  // Per root record: closed with a triangle count other than 6 (§6.5.2 Seam), kept with id_ and count_: a root's
-  // count and id change only in set_corner and close_vertex (records merge only while open).
-  std::vector<uint8_t> odd_;
+  // §6.4.1 A vertex record: its union-find parent, and for a root its triangle count, its vertex id once closed (-1
+  // before), and whether it is closed with a triangle count other than 6 (§6.5.2 Seam; kept with count and id: a
+  // root's count and id change only in set_corner and close_vertex, and records merge only while open). One struct,
+  // so that a find and the fields it leads to share a cache line.
+  struct Record {
+    uint32_t parent, count;
+    int32_t id;
+    uint32_t odd;
+  };
+  std::vector<Record> records_;
   std::vector<uint32_t> stack_;
   uint32_t num_triangles_ = 0, num_vertices_ = 0, closed_ = 0, decoded_ = 0;
   std::string error_;
