@@ -66,6 +66,9 @@ HeightFitStats fit_heights(PrmMesh& prm, const Mesh& input, const AabbTree& tree
   std::vector<double> shift(nv, 0.0);  // total move along the vertex's axis so far
   std::vector<std::array<double, 6>> face_terms(nf);  // per corner: weighted offset sum, weight sum
   std::vector<uint8_t> moved(nv, 0);
+  // flipped() of a face at the current positions, while they last (kFlipUnknown: not evaluated or a corner moved).
+  enum : uint8_t { kFlipUnknown, kFlipUnknownMark, kFlipNo, kFlipYes };
+  std::vector<uint8_t> flip_state(nf, kFlipUnknown);
   for (int it = 0; it < options.iterations; ++it) {
     tbb::parallel_for(size_t{0}, nf, [&](size_t f) {
       const Tri& t = m.triangles[f];
@@ -114,7 +117,23 @@ HeightFitStats fit_heights(PrmMesh& prm, const Mesh& input, const AabbTree& tree
       touched.push_back(v);
     }
     // Undo moves that fold a triangle (its normal turning by more than 90 degrees from its original one), flip it
-    // against the input or make it degenerate, until none does.
+    // against the input or make it degenerate, until none does. The flip test (a closest-point query) of each face
+    // around a moved vertex is evaluated once, in parallel, and again only when one of its corners is reverted.
+    std::vector<uint32_t> check_faces;
+    for (uint32_t v : touched)
+      if (m.positions[v] != before[v])
+        for (uint32_t f : vertex_faces[v])
+          if (!was_flipped[f] && flip_state[f] != kFlipUnknownMark) {
+            flip_state[f] = kFlipUnknownMark;
+            check_faces.push_back(f);
+          }
+    tbb::parallel_for(size_t{0}, check_faces.size(), [&](size_t k) {
+      flip_state[check_faces[k]] = flipped(check_faces[k]) ? kFlipYes : kFlipNo;
+    });
+    auto flipped_now = [&](uint32_t f) {
+      if (flip_state[f] < kFlipNo) flip_state[f] = flipped(f) ? kFlipYes : kFlipNo;
+      return flip_state[f] == kFlipYes;
+    };
     for (bool again = true; again;) {
       again = false;
       for (uint32_t v : touched) {
@@ -122,10 +141,11 @@ HeightFitStats fit_heights(PrmMesh& prm, const Mesh& input, const AabbTree& tree
         for (uint32_t f : vertex_faces[v]) {
           const Tri& t = m.triangles[f];
           const Vec3 n2 = triangle_normal_area2(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]);
-          if (dot(n2, normal0[f]) > 1e-3 * norm(n2) && norm2(n2) > 0 && (was_flipped[f] || !flipped(f))) continue;
+          if (dot(n2, normal0[f]) > 1e-3 * norm(n2) && norm2(n2) > 0 && (was_flipped[f] || !flipped_now(f))) continue;
           for (uint32_t u : t)
             if (m.positions[u] != before[u]) {
               m.positions[u] = before[u];
+              for (uint32_t g : vertex_faces[u]) flip_state[g] = kFlipUnknown;
               shift[u] = dot(before[u] - start[u], axis_vector(axis[u]));
               ++stats.reverted;
               again = true;
@@ -133,6 +153,7 @@ HeightFitStats fit_heights(PrmMesh& prm, const Mesh& input, const AabbTree& tree
         }
       }
     }
+    std::fill(flip_state.begin(), flip_state.end(), kFlipUnknown);
     for (uint32_t v : touched) moved[v] = moved[v] || m.positions[v] != start[v];
   }
   for (uint8_t x : moved) stats.moved += x;

@@ -164,15 +164,18 @@ RemeshResult remesh(const Mesh& input, const RemeshOptions& options, const Error
             std::max<int64_t>(1, static_cast<int64_t>(options.grid_tolerance * static_cast<double>(best_grid))))
       break;
     if (e <= target && e >= options.accept_error * target) break;
-    double p = 2.0;
+    if (e <= target && options.next_exponent > 0 &&
+        e * std::pow(static_cast<double>(grid + 1) / static_cast<double>(grid), options.next_exponent) > target)
+      break;
+    double p = options.first_exponent;
     if (result.search.size() >= 2) {
       const SearchStep& a = result.search[result.search.size() - 2];
       if (a.grid != step.grid && a.error.rms > 0 && step.error.rms > 0)
         p = std::clamp(std::log(step.error.rms / a.error.rms) / std::log(static_cast<double>(step.grid) / a.grid), 1.0, 3.0);
     }
     // Aim slightly below the target so that the next step is likely to be feasible.
-    double next = static_cast<double>(grid) * std::pow(0.97 * target / std::max(e, 1e-12), 1.0 / p);
-    int64_t g = std::max<int64_t>(2, static_cast<int64_t>(std::floor(next)));
+    double next = static_cast<double>(grid) * std::pow(options.aim * target / std::max(e, 1e-12), 1.0 / p);
+    int64_t g = std::max<int64_t>(2, static_cast<int64_t>(options.round_to_nearest ? std::round(next) : std::floor(next)));
     const double growth = std::max(static_cast<double>(kSearchVertexFloor),
                                    static_cast<double>(kSearchVertexGrowth) * static_cast<double>(step.vertices));
     g = std::min(std::max({g, finest, grid_for_vertices(growth)}), coarsest);

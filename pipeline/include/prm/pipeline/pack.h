@@ -89,6 +89,10 @@ struct EffortPlan {
   int lambda_rounds = 5;          // bisection rounds over kHeightLambdas (5 finds the last one that meets)
   double grid_tolerance = 0.02;   // remesh::RemeshOptions::grid_tolerance
   double accept_error = 1.0;      // remesh::RemeshOptions::accept_error
+  double first_exponent = 2.0;    // remesh::RemeshOptions::first_exponent
+  double next_exponent = 0;       // remesh::RemeshOptions::next_exponent
+  double aim = 0.97;              // remesh::RemeshOptions::aim
+  bool round_to_nearest = false;  // remesh::RemeshOptions::round_to_nearest
 };
 EffortPlan effort_plan(int effort);  // throws std::invalid_argument outside kMinEffort..kMaxEffort
 constexpr double kHeightTolerance = 1.5;

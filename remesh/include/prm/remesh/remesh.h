@@ -28,6 +28,19 @@ struct RemeshOptions {
   // With target_error: the search also stops at the first grid whose error is at least this fraction of the target
   // (1: never; a lower value trades a finer grid, more bytes, for fewer remesh rounds).
   double accept_error = 1.0;
+  // With target_error: the exponent p of error ~ g^p assumed for the step from the first grid (later steps fit it to
+  // the last two grids). 2 is the smooth-surface law; the decoded, quantized candidates of pack grow more slowly at a
+  // grid of 10-20 quantization steps (1.1-1.6 on the paper's models), since their rounding error does not shrink
+  // with g.
+  double first_exponent = 2.0;
+  // With target_error and > 0: the search also stops at a grid g that meets the target when the next coarser grid
+  // g + 1, its error extrapolated as e x ((g + 1) / g)^next_exponent, would miss it (instead of measuring g + 1).
+  // 0: never (the search brackets the target between measured grids).
+  double next_exponent = 0;
+  // With target_error: each step aims at this fraction of the target, and rounds the predicted grid down (false: a
+  // grid just below the target's, rarely over it, at the cost of more steps) or to the nearest (true).
+  double aim = 0.97;
+  bool round_to_nearest = false;
   // The relief layout of the input (build_reliefs(input, reliefs)), when the caller built it already: a search over
   // several bit depths or step scales builds it once. Null: built here.
   const ReliefLayout* layout = nullptr;
