@@ -21,11 +21,11 @@ void add_pack_command(CLI::App& root) {
       "pack", "Remesh a mesh into a piecewise regular mesh and compress it into a .prm stream (repair + remesh + encode)");
   struct Options {
     std::string input, output, keep_prm;
-    double target = 0, grid = 0, grid_fraction = 0, tau = 0.2, lambda = 0, step_scale = 0;
+    double target = 0, max_error = 0, grid = 0, grid_fraction = 0, tau = 0.2, lambda = 0, step_scale = 0;
     int bits = 0, sweeps = 4, effort = pipeline::kDefaultEffort;
     std::string max_version = "1.4";
     size_t samples = 0;
-    bool json = false, no_fit = false, round_heights = false, fallback = false;
+    bool json = false, no_fit = false, round_heights = false, fallback = false, no_refine = false;
     double error_flip_weight = remesh::kDefaultErrorFlipWeight;
   };
   auto opt = std::make_shared<Options>();
@@ -40,7 +40,16 @@ void add_pack_command(CLI::App& root) {
   auto* g = cmd->add_option("--grid", opt->grid, "Grid size in model units")->check(CLI::PositiveNumber);
   auto* gf = cmd->add_option("--grid-fraction", opt->grid_fraction, "Grid size as a fraction of the diagonal")
                  ->check(CLI::Range(1e-6, 0.5));
+  auto* me = cmd->add_option("--max-error", opt->max_error,
+                             "Largest maximum distance (sampled Hausdorff, Metro's ten samples per face) between the "
+                             "decoded mesh and the input, as a fraction of the bounding-box diagonal (e.g. 1.6e-3); "
+                             "alone or with --target-error, the search meets both. Default: none, but the remesher "
+                             "inserts vertices where the mesh strays more than " +
+                                 std::to_string(pipeline::kRefineShare * pipeline::kDefaultMaxErrorPerTarget).substr(0, 3) +
+                                 " x --target-error from the input (bench/README.md 'Worst-case error')")
+                 ->check(CLI::Range(1e-7, 0.1));
   te->excludes(g)->excludes(gf);
+  me->excludes(g)->excludes(gf);
   g->excludes(gf);
   cmd->add_option("--tau", opt->tau, "Relief smoothing parameter in (0, 0.577) (default 0.2; paper: 0.1-0.3)");
   cmd->add_option("--bits", opt->bits,
@@ -69,6 +78,9 @@ void add_pack_command(CLI::App& root) {
                   "Sweeps of the refinement of that choice over all heights together, each height also weighing the "
                   "residuals it predicts (spec Appendix B.2; default 4; 0: each height alone, in coding order)")
       ->check(CLI::Range(0, 16));
+  cmd->add_flag("--no-local-refinement", opt->no_refine,
+                "No vertices inserted where the remeshed surface strays from the input (the worst case is then "
+                "left to the grid; for comparison)");
   cmd->add_flag("--round-heights", opt->round_heights,
                 "Round every height to the nearest step (no rate-distortion choice; for comparison)");
   cmd->add_option("--max-version", opt->max_version,
@@ -82,11 +94,13 @@ void add_pack_command(CLI::App& root) {
   cmd->callback([opt] {
     if (is_prm_stream_path(opt->input) && is_gltf_file_path(opt->output))
       return wrap_prm_stream(opt->input, opt->output, opt->fallback, opt->json);
-    if (opt->grid <= 0 && opt->grid_fraction <= 0 && opt->target <= 0)
-      throw CLI::ValidationError("pack", "give one of --target-error, --grid or --grid-fraction");
+    if (opt->grid <= 0 && opt->grid_fraction <= 0 && opt->target <= 0 && opt->max_error <= 0)
+      throw CLI::ValidationError("pack", "give one of --target-error (and/or --max-error), --grid or --grid-fraction");
     check_pack_output(opt->output, opt->fallback);
     pipeline::PackOptions po;
     po.target_error = opt->target;
+    po.max_error = opt->max_error;
+    po.refine_deviations = !opt->no_refine;
     po.grid_size = opt->grid;
     po.grid_fraction = opt->grid_fraction;
     po.tau = opt->tau;
@@ -170,6 +184,8 @@ void add_pack_command(CLI::App& root) {
       j["search"] = search;
       j["regular_share"] = s.faces ? static_cast<double>(s.regular_faces) / s.faces : 0.0;
       j["regular_patches"] = rep.regular_patches;
+      j["max_error"] = opt->max_error;
+      j["refined_vertices"] = s.deviation_inserts;
       j["height_lambda"] = r.codec_options.height_lambda;
       j["height_sweeps"] = r.codec_options.height_lambda > 0 ? r.codec_options.height_sweeps : 0;
       j.print();
