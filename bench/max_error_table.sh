@@ -1,7 +1,7 @@
 #!/bin/sh
 # The worst-case error of `prm pack` (issue 22 item 3, bench/README.md "Worst-case error"): per mesh, the decoded
 # stream's RMS and max (sampled Hausdorff) error, its bytes and the CPU seconds, without the local refinement
-# (--no-local-refinement, the behaviour before issue 22), with it (the default), and with --max-error M.
+# (the default, as before issue 22), with it (--local-refinement), and with --max-error M.
 # Usage: bench/max_error_table.sh PRM TARGET MAX_ERROR MESH...   (prints one Markdown row per mesh and mode)
 set -eu
 prm=$1; target=$2; max=$3; shift 3
@@ -10,10 +10,10 @@ echo "| mesh | mode | bytes | RMS | max | max/target | refined vertices | CPU s 
 echo "|---|---|---:|---:|---:|---:|---:|---:|"
 for mesh in "$@"; do
   name=$(basename "$mesh")
-  for mode in before default max; do
+  for mode in default refined max; do
     case $mode in
-      before) extra="--no-local-refinement" ;;
       default) extra="" ;;
+      refined) extra="--local-refinement" ;;
       max) extra="--max-error $max" ;;
     esac
     # shellcheck disable=SC2086

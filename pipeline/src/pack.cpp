@@ -68,12 +68,13 @@ PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bit
   ro.grid_fraction = options.grid_fraction;
   ro.initial_grid_size = initial_grid;
   ro.target_error = kQuantizationMargin * options.target_error;
-  // The worst case: --max-error is a constraint of the search; without it, the local refinement alone aims at
-  // kDefaultMaxErrorPerTarget x the target (deviation_refinement.h).
+  // The worst case: --max-error is a constraint of the search and sets the local refinement's bound
+  // (deviation_refinement.h); without it, the refinement (when asked for) aims at kDefaultMaxErrorPerTarget x the
+  // target.
   ro.max_error = kQuantizationMargin * options.max_error;
-  ro.refine_error = kRefineShare * (options.max_error > 0 ? options.max_error
-                                                          : kDefaultMaxErrorPerTarget * options.target_error);
-  if (!options.refine_deviations) ro.refine_error = 0;
+  ro.refine_error = options.max_error > 0      ? kRefineShare * options.max_error
+                    : options.refine_deviations ? kRefineShare * kDefaultMaxErrorPerTarget * options.target_error
+                                                : 0;
   // The search measures what the decoder will output: the candidate quantized to the stream's frame (its lattice
   // vertices are exact already; the heights and the other vertices round to the nearest step), or, when the
   // encoder may choose the heights, the candidate encoded and decoded.
