@@ -41,7 +41,7 @@ constexpr double kGridPerTargetError = 32;
 // mesh strays more than kRefineShare x max_error from the input, and the search needs the decoded mesh's max within
 // max_error. Without it, refine_deviations asks for the refinement at kRefineShare x kDefaultMaxErrorPerTarget x
 // target_error; it is off by default: measured in bench/README.md "Worst-case error", it halves the horse's and the
-// camel's max but adds 8-14% bytes on the venus and bunny00 (the latter without lowering the max).
+// camel's max but adds 8-14% bytes on the venus, feline, bunny and bunny00 (the last without lowering the max).
 constexpr double kDefaultMaxErrorPerTarget = 8;
 constexpr double kRefineShare = 0.6;
 
