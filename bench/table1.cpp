@@ -224,11 +224,11 @@ std::string ratio_or_dash(size_t a, size_t b) {
 
 void print_markdown(const std::vector<Result>& rows) {
   std::printf(
-      "| mesh | n_o | n_r | g | g/diag | bits | mode (other) | regular | e·1e4 | S_o KB | S_r KB | conn KB | irreg KB | geom KB | "
+      "| mesh | n_o | n_r | g | g/diag | bits | mode (other) | regular | e·1e4 | max·1e4 | S_o KB | S_r KB | conn KB | irreg KB | geom KB | "
       "total KB | bpv | total/S_o | total/S_r | total/S_r12 | Draco e·1e4 at bits | S_r(e) bits | total/S_r(e) | "
       "enc ms | dec ms | Draco dec ms | dec Draco/PRM | dec ns/vertex | Draco same PRM ns/vertex | vertices/s PRM/Draco "
       "same PRM | remesh s |\n");
-  std::printf("|---|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
+  std::printf("|---|---:|---:|---:|---:|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n");
   for (const Result& r : rows) {
     if (!r.failure.empty()) {
       std::printf("| %s | %zu | %s ||||||||||||||||||||||||||\n", r.mesh.c_str(), r.n_o, r.failure.c_str());
@@ -245,9 +245,9 @@ void print_markdown(const std::vector<Result>& rows) {
                     kb(r.other_bytes).c_str());
     else
       std::snprintf(mode, sizeof mode, "%s", r.mode.c_str());
-    std::printf("| %s | %zu | %zu | %.4g | %.5f | %s | %s | %.1f%% | %.2f | %s | %s | %s | %s | %s | **%s** | **%.2f** | %.3f | "
+    std::printf("| %s | %zu | %zu | %.4g | %.5f | %s | %s | %.1f%% | %.2f | %.2f | %s | %s | %s | %s | %s | **%s** | **%.2f** | %.3f | "
                 "%.3f | %.3f | %.2f | %d | %s | %.1f | %.1f | %.1f | %.2f | %.0f | %.0f | %.2f | %.1f |\n",
-                r.mesh.c_str(), r.n_o, r.n_r, r.g, r.g_rel, bits, mode, 100 * r.regular_share, r.e * 1e4, kb(r.s_o).c_str(),
+                r.mesh.c_str(), r.n_o, r.n_r, r.g, r.g_rel, bits, mode, 100 * r.regular_share, r.e * 1e4, r.e_max * 1e4, kb(r.s_o).c_str(),
                 kb(r.s_r).c_str(), kb(r.conn).c_str(), kb(r.irreg).c_str(), kb(r.geom).c_str(), kb(r.total).c_str(),
                 8.0 * static_cast<double>(r.total) / static_cast<double>(r.n_r),
                 static_cast<double>(r.total) / static_cast<double>(r.s_o),

@@ -146,6 +146,45 @@ DistanceReport metro_distance(const Mesh& a, const Mesh& b, const MetroOptions& 
   return combine(ab, ba, bbox_diagonal(a));
 }
 
+std::vector<DeviationSite> worst_deviations(const Mesh& a, const Mesh& b, size_t k, double separation,
+                                           const MetroOptions& options) {
+  require_surface(a, "A");
+  require_surface(b, "B");
+  const SamplingOptions so = sampling_options(options, sample_count(options, a, b));
+  const AabbTree tree_a(a), tree_b(b);
+  const SurfaceSamples samples_a = sample_surface(a, so), samples_b = sample_surface(b, so);
+  std::vector<double> da, db;
+  one_sided(samples_a, tree_b, &da, nullptr);
+  one_sided(samples_b, tree_a, &db, nullptr);
+  // Candidates: (distance, direction, index), largest first; ties by direction and index, so the order is fixed.
+  struct Candidate {
+    double distance;
+    bool a_to_b;
+    size_t index;
+  };
+  std::vector<Candidate> all;
+  all.reserve(da.size() + db.size());
+  for (size_t i = 0; i < da.size(); ++i) all.push_back({da[i], true, i});
+  for (size_t i = 0; i < db.size(); ++i) all.push_back({db[i], false, i});
+  std::sort(all.begin(), all.end(), [](const Candidate& x, const Candidate& y) {
+    if (x.distance != y.distance) return x.distance > y.distance;
+    if (x.a_to_b != y.a_to_b) return x.a_to_b;
+    return x.index < y.index;
+  });
+  std::vector<DeviationSite> out;
+  const double sep2 = separation * separation;
+  for (const Candidate& c : all) {
+    if (out.size() >= k) break;
+    const Vec3& p = c.a_to_b ? samples_a.points[c.index] : samples_b.points[c.index];
+    bool near = false;
+    for (const DeviationSite& s : out) near = near || norm2(s.sample - p) < sep2;
+    if (near) continue;
+    const AabbTree::Hit hit = (c.a_to_b ? tree_b : tree_a).closest(p);
+    out.push_back({p, hit.point, hit.face, c.distance, c.a_to_b});
+  }
+  return out;
+}
+
 MetroReference::MetroReference(Mesh reference, const MetroOptions& options)
     : mesh_(std::move(reference)), options_(options) {
   require_surface(mesh_, "A");

@@ -213,3 +213,28 @@ TEST(MetroDistance, MeshesWithoutSurfaceAreRejected) {
 
 }  // namespace
 }  // namespace prm
+
+// A flat patch and a copy with one vertex lifted by 0.3 (a spike) and another by 0.1: the worst site is the spike's
+// tip, sampled on the copy (B -> A), at the Hausdorff distance; the second, farther than the separation (0.4) from it, is the smaller bump.
+TEST(MetroDistance, WorstDeviationsFindTheSpikes) {
+  using namespace prm;
+  const Mesh a = prm::test::grid_patch(10, 10, 1.0, 1.0);
+  Mesh b = a;
+  size_t spike = 0, bump = 0;
+  for (size_t v = 0; v < b.positions.size(); ++v) {
+    if (std::abs(b.positions[v][0] - 0.3) < 1e-9 && std::abs(b.positions[v][1] - 0.3) < 1e-9) spike = v;
+    if (std::abs(b.positions[v][0] - 0.7) < 1e-9 && std::abs(b.positions[v][1] - 0.7) < 1e-9) bump = v;
+  }
+  b.positions[spike][2] = 0.3;
+  b.positions[bump][2] = 0.1;
+  const DistanceReport d = metro_distance(a, b);
+  const std::vector<DeviationSite> sites = worst_deviations(a, b, 2, 0.4);
+  ASSERT_EQ(sites.size(), 2u);
+  EXPECT_FALSE(sites[0].a_to_b);
+  EXPECT_DOUBLE_EQ(sites[0].distance, d.max);
+  EXPECT_NEAR(sites[0].distance, 0.3, 1e-12);
+  EXPECT_NEAR(norm(sites[0].sample - b.positions[spike]), 0, 1e-12);
+  EXPECT_NEAR(norm(sites[0].closest - Vec3{0.3, 0.3, 0}), 0, 1e-12);
+  EXPECT_NEAR(sites[1].distance, 0.1, 1e-12);
+  EXPECT_NEAR(norm(sites[1].sample - b.positions[bump]), 0, 1e-12);
+}

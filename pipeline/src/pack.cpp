@@ -73,6 +73,13 @@ PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bit
   ro.grid_fraction = options.grid_fraction;
   ro.initial_grid_size = initial_grid;
   ro.target_error = kQuantizationMargin * options.target_error;
+  // The worst case: --max-error is a constraint of the search and sets the local refinement's bound
+  // (deviation_refinement.h); without it, the refinement (when asked for) aims at kDefaultMaxErrorPerTarget x the
+  // target.
+  ro.max_error = kQuantizationMargin * options.max_error;
+  ro.refine_error = options.max_error > 0      ? kRefineShare * options.max_error
+                    : options.refine_deviations ? kRefineShare * kDefaultMaxErrorPerTarget * options.target_error
+                                                : 0;
   // The search measures what the decoder will output: the candidate quantized to the stream's frame (its lattice
   // vertices are exact already; the heights and the other vertices round to the nearest step), or, when the
   // encoder may choose the heights, the candidate encoded and decoded.
@@ -103,7 +110,9 @@ PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bit
       e.rms *= sparse_bias;
       return e;
     }
-    if (e.rms < kSparseBand[0] * ro.target_error || e.rms > kSparseBand[1] * ro.target_error) return e;
+    const bool max_in_band = ro.max_error > 0 && e.max >= kSparseBand[0] * ro.max_error;
+    if ((e.rms < kSparseBand[0] * ro.target_error || e.rms > kSparseBand[1] * ro.target_error) && !max_in_band)
+      return e;
     const remesh::ErrorEstimate full = measure_with(ctx.full, m);
     if (e.rms > 0) sparse_bias = full.rms / e.rms;
     return full;
@@ -183,7 +192,8 @@ PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bit
       size_t zero_area = 0, coincident = 0;
       const remesh::ErrorEstimate e =
           encode_and_measure(out.remesh.prm, o, &report, &stream, &zero_area, nullptr, &coincident);
-      if (e.rms > ro.target_error || zero_area > 0 || coincident > base_coincident) {
+      if (e.rms > ro.target_error || (ro.max_error > 0 && e.max > ro.max_error) || zero_area > 0 ||
+          coincident > base_coincident) {
         hi = mid;
         continue;
       }
@@ -218,8 +228,12 @@ PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bit
   }
   // The search measured with fewer samples than the report: the chosen stream at full density. Where that misses
   // the target, smaller lambdas (then rounding) are tried at full density; `measured` false if none meets it.
-  if (&ctx.search != &ctx.full && options.target_error > 0 && zero_area == 0) {
+  if (&ctx.search != &ctx.full && (options.target_error > 0 || options.max_error > 0) && zero_area == 0) {
     const double target = kQuantizationMargin * options.target_error;
+    const double max_target = kQuantizationMargin * options.max_error;
+    auto meets = [&](const remesh::ErrorEstimate& e) {
+      return (options.target_error <= 0 || e.rms <= target) && (max_target <= 0 || e.max <= max_target);
+    };
     ProgressJob::stage("check");
     ProgressJob::rounds_left(1);
     auto full_error = [&](const codec::PrmOptions& o, std::vector<uint8_t>* stream, codec::EncodeReport* report) {
@@ -231,7 +245,7 @@ PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bit
     if (!decoded.ok()) throw InputError("the encoder's stream does not decode (a codec bug): " + decoded.status.message);
     const DistanceReport d = ctx.full.compare(to_mesh(decoded.value));
     out.remesh.error = remesh::ErrorEstimate{d.rel(d.rms), d.rel(d.max)};
-    bool met = out.remesh.error.rms <= target;
+    bool met = meets(out.remesh.error);
     int k = 0;  // the chosen lambda's index
     while (k < static_cast<int>(std::size(kHeightLambdas)) && kHeightLambdas[k] < out.codec_options.height_lambda) ++k;
     for (int j = k - 1; !met && out.codec_options.height_lambda > 0 && j >= -1; --j) {
@@ -240,7 +254,7 @@ PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bit
       std::vector<uint8_t> stream;
       codec::EncodeReport report;
       const remesh::ErrorEstimate e = full_error(o, &stream, &report);
-      if (e.rms > target) continue;
+      if (!meets(e)) continue;
       met = true;
       out.stream = std::move(stream);
       out.report = report;
@@ -316,7 +330,11 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
   // The effort applies to the search of the step; a given bit depth or step scale is searched as it always was.
   const EffortPlan plan =
       effort_plan(options.bits > 0 || options.step_scale > 0 ? kMaxEffort : (effort_plan(options.effort), options.effort));
-  const bool one_attempt = options.bits > 0 || options.target_error <= 0;
+  const bool searched = options.target_error > 0 || options.max_error > 0;
+  const bool one_attempt = options.bits > 0 || !searched;
+  // The step and grid predictions scale with the target: with --max-error alone, the RMS error it allows by default.
+  const double predicted_error =
+      options.target_error > 0 ? options.target_error : options.max_error / kDefaultMaxErrorPerTarget;
   const bool rate_distortion = options.optimize_heights && options.height_lambda <= 0 && options.target_error > 0;
   ProgressJob progress(one_attempt ? 1 : plan.exhaustive ? kExpectedExhaustiveAttempts : plan.steps,
                        kExpectedGridRounds + (rate_distortion ? plan.lambda_rounds : 0));
@@ -343,7 +361,7 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
   // The search's own, sparser samples (only where they are fewer than the report's).
   MetroOptions so = mo;
   so.samples_per_face = plan.search_samples_per_face;
-  const bool sparse = options.metro_samples == 0 && options.target_error > 0 && plan.search_samples_per_face < 10;
+  const bool sparse = options.metro_samples == 0 && searched && plan.search_samples_per_face < 10;
   std::unique_ptr<MetroReference> sparse_reference;
   if (sparse) sparse_reference = std::make_unique<MetroReference>(source, so);
   remesh::ReliefOptions relief_options;
@@ -422,7 +440,7 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
       // nearest the best so far first, each grid search starting from the best grid.
       const remesh::QuantFrame unit = remesh::frame_of_mesh(source, kMinPackBits, 1.0);
       const double extent = unit.step * static_cast<double>((1 << kMinPackBits) - 1);
-      const double wanted = kStepPerTargetError * options.target_error * reference.diagonal();
+      const double wanted = kStepPerTargetError * predicted_error * reference.diagonal();
       const int lowest = 8 * kMinPackBits - 7, highest = 8 * kMaxPackBits;
       auto clamp_p = [&](int p) { return std::clamp(p, lowest, highest); };
       int best_p = clamp_p(static_cast<int>(std::lround(-8.0 * std::log2(wanted / extent))));
@@ -431,7 +449,7 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
         return p >= lowest && p <= highest && std::find(tried_p.begin(), tried_p.end(), p) == tried_p.end();
       };
       int p = best_p;
-      grid = kGridPerTargetError * options.target_error * reference.diagonal();
+      grid = kGridPerTargetError * predicted_error * reference.diagonal();
       for (int n = 0; n < plan.steps && p != INT32_MIN; ++n) {
         tried_p.push_back(p);
         const Step st = step_at(p);
@@ -494,7 +512,7 @@ PackResult pack_prm_open(const Mesh& input, const PackOptions& options, const Me
 PackResult pack(const Mesh& input, const PackOptions& options) {
   check_remesh_range(input);  // before anything squares a length
   if (options.bits <= 0 && options.step_scale <= 0) effort_plan(options.effort);  // refused before any work
-  const bool has_target = options.target_error > 0;
+  const bool has_target = options.target_error > 0 || options.max_error > 0;
   // --fill-holes asks for a closed output: the general path codes the input as it is, open, so auto is prm then.
   const bool fill_open = options.fill_holes && validate_mesh(input).boundary_loops > 0;
   if (fill_open && options.mode == PackMode::general)
@@ -514,8 +532,8 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
   if (mode != PackMode::prm) {
     const auto t0 = std::chrono::steady_clock::now();
     try {
-      general_pack = pack_general(input, *input_reference, has_target ? target : 0, options.bits,
-                                  options.max_minor);
+      general_pack = pack_general(input, *input_reference, target, options.bits, options.max_minor,
+                                  kQuantizationMargin * options.max_error);
       general.made = true;
       general.bytes = general_pack.stream.size();
       general.vertices = general_pack.report.vertices;

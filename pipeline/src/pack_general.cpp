@@ -42,13 +42,16 @@ GeneralPack encode_at(const Mesh& input, const MetroReference& reference, int bi
 }  // namespace
 
 GeneralPack pack_general(const Mesh& input, const MetroReference& reference, double target, int bits,
-                         int max_minor) {
-  auto meets = [&](const GeneralPack& g) { return g.zero_area == 0 && (target <= 0 || g.rms <= target); };
+                         int max_minor, double max_target) {
+  auto meets = [&](const GeneralPack& g) {
+    return g.zero_area == 0 && (target <= 0 || g.rms <= target) && (max_target <= 0 || g.max <= max_target);
+  };
   auto missed = [&](const GeneralPack& g) {
     return "the general path at " + std::to_string(g.bits) + " bits " +
            (g.zero_area ? "has " + std::to_string(g.zero_area) + " triangle(s) of zero area"
-                        : "has an RMS error of " + std::to_string(g.rms) + ", above the target " +
-                              std::to_string(target));
+            : target > 0 && g.rms > target
+                ? "has an RMS error of " + std::to_string(g.rms) + ", above the target " + std::to_string(target)
+                : "has a maximum error of " + std::to_string(g.max) + ", above the bound " + std::to_string(max_target));
   };
   std::vector<GeneralPack::Trial> tried;
   auto at = [&](int b) {
@@ -57,7 +60,7 @@ GeneralPack pack_general(const Mesh& input, const MetroReference& reference, dou
     return g;
   };
   GeneralPack best;
-  if (bits > 0 || target <= 0) {
+  if (bits > 0 || (target <= 0 && max_target <= 0)) {
     best = at(bits > 0 ? bits : 12);
     if (!meets(best)) throw remesh::TargetNotReached(missed(best));
   } else {

@@ -49,9 +49,11 @@ double mean_edge_length(const Mesh& m) {
 
 RemeshResult remesh(const Mesh& input, const RemeshOptions& options, const ErrorFunction& error) {
   const auto t0 = std::chrono::steady_clock::now();
-  const int given = (options.grid_size > 0) + (options.grid_fraction > 0) + (options.target_error > 0);
-  if (given != 1) throw std::invalid_argument("remesh: give exactly one of grid_size, grid_fraction, target_error");
-  if (options.target_error > 0 && !error) throw std::invalid_argument("remesh: target_error needs an error function");
+  const bool searched = options.target_error > 0 || options.max_error > 0;
+  const int given = (options.grid_size > 0) + (options.grid_fraction > 0) + searched;
+  if (given != 1)
+    throw std::invalid_argument("remesh: give exactly one of grid_size, grid_fraction, target_error / max_error");
+  if (searched && !error) throw std::invalid_argument("remesh: target_error needs an error function");
   if (input.triangles.empty()) throw InputError("the mesh has no faces");
   check_remesh_range(input);
 
@@ -78,6 +80,7 @@ RemeshResult remesh(const Mesh& input, const RemeshOptions& options, const Error
   ro.fit_heights = options.fit_heights;
   ro.error_flip_weight = options.error_flip_weight;
   const double diagonal = bbox_diagonal(input);
+  ro.max_deviation = (options.refine_error > 0 ? options.refine_error : options.max_error) * diagonal;
   const int64_t coarsest = int64_t{1} << options.bits;  // a grid wider than the bounding box
   auto grid_of = [&](double size) {
     const double steps = size / ro.frame.step;
@@ -124,7 +127,7 @@ RemeshResult remesh(const Mesh& input, const RemeshOptions& options, const Error
     return prm;
   };
 
-  if (options.target_error <= 0) {
+  if (!searched) {
     const double size = options.grid_size > 0 ? options.grid_size : options.grid_fraction * diagonal;
     if (grid_of(size) < finest) throw VertexBudgetExceeded(over_budget(grid_of(size)) + ": choose a coarser grid");
     result.prm = attempt(grid_of(size));
@@ -138,7 +141,12 @@ RemeshResult remesh(const Mesh& input, const RemeshOptions& options, const Error
 
   // Search: the resampling error grows roughly like g^2 (linear interpolation of a smooth surface), so each step
   // rescales g by (E / e)^(1/p), with the exponent p fitted from the last two steps (clamped to [1, 3]).
-  const double target = options.target_error;
+  // The search's error: the RMS error over its target, or the max over max_error, whichever is larger; 1 meets both.
+  auto severity = [&](const ErrorEstimate& e) {
+    return std::max(options.target_error > 0 ? e.rms / options.target_error : 0.0,
+                    options.max_error > 0 ? e.max / options.max_error : 0.0);
+  };
+  const double target = 1;
   int64_t grid = std::max(finest,
                            grid_of(options.initial_grid_size > 0 ? options.initial_grid_size : 1.5 * mean_edge_length(input)));
   int64_t best_grid = -1;
@@ -151,7 +159,7 @@ RemeshResult remesh(const Mesh& input, const RemeshOptions& options, const Error
     PrmMesh prm = attempt(grid);
     progress.advance();
     const SearchStep& step = result.search.back();
-    const double e = step.error.rms;
+    const double e = severity(step.error);
     if (e <= target && grid > best_grid) {
       best_grid = grid;
       best = std::move(prm);
@@ -170,8 +178,8 @@ RemeshResult remesh(const Mesh& input, const RemeshOptions& options, const Error
     double p = options.first_exponent;
     if (result.search.size() >= 2) {
       const SearchStep& a = result.search[result.search.size() - 2];
-      if (a.grid != step.grid && a.error.rms > 0 && step.error.rms > 0)
-        p = std::clamp(std::log(step.error.rms / a.error.rms) / std::log(static_cast<double>(step.grid) / a.grid), 1.0, 3.0);
+      if (a.grid != step.grid && severity(a.error) > 0 && e > 0)
+        p = std::clamp(std::log(e / severity(a.error)) / std::log(static_cast<double>(step.grid) / a.grid), 1.0, 3.0);
     }
     // Aim slightly below the target so that the next step is likely to be feasible.
     double next = static_cast<double>(grid) * std::pow(options.aim * target / std::max(e, 1e-12), 1.0 / p);
@@ -192,12 +200,14 @@ RemeshResult remesh(const Mesh& input, const RemeshOptions& options, const Error
     double finest_error = 0;
     for (const SearchStep& st : result.search)
       if (st.grid == finest) finest_error = st.error.rms;
-    throw VertexBudgetExceeded("remesh: the target error " + std::to_string(target) + " needs a finer grid: " +
-                               over_budget(finest - 1) + "; the finest within it gives an RMS error of " +
-                               std::to_string(finest_error));
+    throw VertexBudgetExceeded("remesh: the target error " + std::to_string(options.target_error) +
+                               (options.max_error > 0 ? " (max " + std::to_string(options.max_error) + ")" : "") +
+                               " needs a finer grid: " + over_budget(finest - 1) +
+                               "; the finest within it gives an RMS error of " + std::to_string(finest_error));
   }
   if (best_grid < 0)
-    throw TargetNotReached("remesh: no grid size reached the target error " + std::to_string(target) +
+    throw TargetNotReached("remesh: no grid size reached the target error " + std::to_string(options.target_error) +
+                           (options.max_error > 0 ? " (max " + std::to_string(options.max_error) + ")" : "") +
                              " in " + std::to_string(options.max_search_steps) + " steps");
   result.prm = std::move(best);
   result.error_measured = true;

@@ -10,6 +10,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "deviation_refinement.h"
 #include "height_fitting.h"
 #include "loop_fill.h"
 #include "prm/aabb_tree.h"
@@ -177,6 +178,16 @@ PrmMesh resample_and_merge(const LayoutInput& layout, const ResampleOptions& opt
     const HeightFitStats hs = fit_heights(prm, input, tree, HeightFitOptions{});
     st.heights_moved = hs.moved;
     st.height_moves_reverted = hs.reverted;
+  }
+  if (options.max_deviation > 0) {
+    DeviationRefinementOptions dro;
+    dro.max_deviation = options.max_deviation;
+    const DeviationRefinementStats ds = refine_deviations(prm, input, tree, dro);
+    st.deviation_inserts = ds.inserted;
+    st.deviation_refused = ds.refused;
+    st.vertices = prm.mesh.positions.size();
+    st.faces = prm.mesh.triangles.size();
+    st.regular_faces = static_cast<size_t>(std::count(prm.face_regular.begin(), prm.face_regular.end(), 1));
   }
   // Last, since it places vertices exactly on quantization points: the stream must hold this mesh, not one with
   // collapsed triangles.

@@ -74,6 +74,19 @@ OneSidedDistance distance_to_surface(const SurfaceSamples& samples, const AabbTr
 OneSidedDistance distance_to_surface(const std::vector<Vec3>& points, const AabbTree& surface,
                                      std::vector<double>* per_sample = nullptr);
 
+// Where the largest deviations are (the sampled Hausdorff distance's witnesses): the samples of the two directions
+// with the largest distances, at most k of them, sorted by distance, largest first, each at least `separation`
+// (model units) from every larger one, so that k sites are k different places rather than one spot's neighbours.
+struct DeviationSite {
+  Vec3 sample{};      // the sample point (on A when a_to_b, on B otherwise)
+  Vec3 closest{};     // its closest point on the other surface
+  uint32_t face = 0;  // the other surface's triangle that holds `closest`
+  double distance = 0;
+  bool a_to_b = true;
+};
+std::vector<DeviationSite> worst_deviations(const Mesh& a, const Mesh& b, size_t k, double separation,
+                                           const MetroOptions& options = {});
+
 // Length of the diagonal of the bounding box of the mesh's vertices (0 for an empty mesh).
 double bbox_diagonal(const Mesh& mesh);
 

@@ -38,8 +38,9 @@ struct GeneralPack {
 // a bit depth whose quantization collapses one does not meet the target either (an input with zero-area triangles
 // of its own is left to the remesher). Throws prm::InputError with the codec's message when the general path refuses
 // the mesh (non-manifold, ...), remesh::TargetNotReached when no bit depth meets the target. max_minor: the newest
-// format 1.N the stream may need (PackOptions::max_minor; below 3, no CLERS seam context, §6.5.2).
+// format 1.N the stream may need (PackOptions::max_minor; below 3, no CLERS seam context, §6.5.2). max_target > 0:
+// the decoded mesh's maximum (Hausdorff) distance must be at most that too (PackOptions::max_error), also alone.
 GeneralPack pack_general(const Mesh& input, const MetroReference& reference, double target, int bits,
-                         int max_minor = codec::kFormatMinorPatchContexts);
+                         int max_minor = codec::kFormatMinorPatchContexts, double max_target = 0);
 
 }  // namespace prm::pipeline

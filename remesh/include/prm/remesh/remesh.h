@@ -16,10 +16,17 @@ struct RemeshOptions {
   int bits = 12;                 // quantization of the codec that will store the result (sets the lattice units)
   double step_scale = 1.0;       // the quantization step in units of 2^-bits of the extent, in [1, 2)
   ReliefOptions reliefs;         // tau, geodesics
-  // The grid size: exactly one of these, or target_error.
+  // The grid size: exactly one of these, or target_error and/or max_error.
   double grid_size = 0;          // model units
   double grid_fraction = 0;      // fraction of the bounding-box diagonal
   double target_error = 0;       // largest symmetric RMS distance, as a fraction of the diagonal: search g
+  // Largest symmetric maximum distance (the sampled Hausdorff distance), as a fraction of the diagonal: a grid meets
+  // the search's target only if the error function's max is within it too (alone, without target_error, it is the
+  // target). 0: none.
+  double max_error = 0;
+  // Local refinement: input vertices farther than this (fraction of the diagonal) from a candidate are inserted into
+  // it as irregular vertices (ResampleOptions::max_deviation). 0: max_error (0 too: none).
+  double refine_error = 0;
   double initial_grid_size = 0;  // with target_error: where the search starts (model units; 0: 1.5 mean edges)
   int max_search_steps = 8;
   // With target_error: the search stops once the finest failing grid is at most this fraction (or one step) above

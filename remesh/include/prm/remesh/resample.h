@@ -32,6 +32,9 @@ struct ResampleOptions {
   bool parallel = true;                // resample reliefs concurrently
   bool fit_heights = true;             // move lattice vertices along their axes to the least-squares fit
   double error_flip_weight = kDefaultErrorFlipWeight;  // error flips (SeamOptions::error_flip_weight; < 0: none)
+  // Local refinement (deviation_refinement.h): input vertices farther than this from the merged mesh (model units)
+  // are inserted as irregular vertices. <= 0: none.
+  double max_deviation = 0;
 };
 
 struct ResampleStats {
@@ -44,6 +47,7 @@ struct ResampleStats {
   size_t valence_flips = 0, error_flips = 0;
   size_t vertices = 0, faces = 0, regular_faces = 0, lattice_vertices = 0;
   size_t heights_moved = 0, height_moves_reverted = 0;  // least-squares heights (height_fitting.h)
+  size_t deviation_inserts = 0, deviation_refused = 0;    // local refinement (deviation_refinement.h)
   // Quantization (quantized_separation.h): faces that lost their area and vertices that shared a position when
   // rounded to the frame, the vertices moved so that none does, and what is left (faces and vertices).
   size_t quantized_degenerate = 0, quantized_rounding_turned = 0, quantized_coincident = 0, quantized_moves = 0,

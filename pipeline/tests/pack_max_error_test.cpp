@@ -1,0 +1,93 @@
+// The worst-case error (issue 22 item 3): PackOptions::max_error is met by the decoded stream, measured by Metro on
+// the stream itself (not by the search's own figures), alone or with target_error; and the remesher's local
+// refinement lowers the Hausdorff distance of a default pack. The longer searches (feline_5k with both bounds, the paper
+// model horse) run under PRM_PACK_MAX_ERROR_HEAVY (label heavy).
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <string>
+
+#include "prm/codec.h"
+#include "prm/mesh_io.h"
+#include "prm/metro_distance.h"
+#include "prm/pipeline/codec_bridge.h"
+#include "prm/pipeline/pack.h"
+
+namespace {
+
+using prm::pipeline::PackOptions;
+
+// Metro (ten samples per face) between the input and the decoded stream.
+prm::DistanceReport decoded_distance(const prm::Mesh& input, const prm::pipeline::PackResult& r) {
+  const auto decoded = prm::codec::decode(r.stream.data(), r.stream.size());
+  EXPECT_TRUE(decoded.ok()) << decoded.status.message;
+  return prm::metro_distance(input, prm::pipeline::to_mesh(decoded.value));
+}
+
+prm::Mesh shared_mesh(const char* file) { return prm::read_mesh(std::string(PRM_SHARED_MESHES) + "/" + file); }
+
+#ifndef PRM_PACK_MAX_ERROR_HEAVY
+
+TEST(PackMaxError, MaxErrorAloneIsMetByTheDecodedStream) {
+  const prm::Mesh input = shared_mesh("spot.obj");
+  PackOptions o;
+  o.max_error = 4e-3;
+  const prm::pipeline::PackResult r = prm::pipeline::pack(input, o);
+  const prm::DistanceReport d = decoded_distance(input, r);
+  std::printf("spot with max 4e-3 alone: %zu bytes, RMS %.3e, max %.3e\n", r.stream.size(), d.rel(d.rms),
+              d.rel(d.max));
+  EXPECT_LE(d.rel(d.max), o.max_error);
+}
+
+TEST(PackMaxError, LocalRefinementLowersTheWorstCase) {
+  const prm::Mesh input = shared_mesh("feline_5k.obj");
+  PackOptions o;
+  o.target_error = 5e-4;
+  o.refine_deviations = false;
+  const prm::pipeline::PackResult before = prm::pipeline::pack(input, o);
+  o.refine_deviations = true;
+  const prm::pipeline::PackResult after = prm::pipeline::pack(input, o);
+  const prm::DistanceReport db = decoded_distance(input, before), da = decoded_distance(input, after);
+  std::printf("feline_5k at 5e-4: without refinement %zu bytes, max %.3e; with %zu bytes, max %.3e (%zu vertices "
+              "inserted)\n", before.stream.size(), db.rel(db.max), after.stream.size(), da.rel(da.max),
+              after.remesh.prm.stats.deviation_inserts);
+  EXPECT_EQ(before.remesh.prm.stats.deviation_inserts, 0u);
+  EXPECT_GT(after.remesh.prm.stats.deviation_inserts, 0u);
+  EXPECT_LE(da.rel(da.rms), o.target_error);
+  EXPECT_LT(da.rel(da.max), 0.8 * db.rel(db.max));
+}
+
+#else
+
+TEST(PackMaxErrorHeavy, MaxErrorWithTargetErrorIsMetByTheDecodedStream) {
+  const prm::Mesh input = shared_mesh("feline_5k.obj");
+  PackOptions o;
+  o.target_error = 5e-4;
+  o.max_error = 3e-3;  // the default pack of this mesh at 5e-4 reaches 3.8e-3 (bench/README.md "Worst-case error")
+  const prm::pipeline::PackResult r = prm::pipeline::pack(input, o);
+  const prm::DistanceReport d = decoded_distance(input, r);
+  std::printf("feline_5k at 5e-4 with max 3e-3: %zu bytes, RMS %.3e, max %.3e\n", r.stream.size(), d.rel(d.rms),
+              d.rel(d.max));
+  EXPECT_LE(d.rel(d.rms), o.target_error);
+  EXPECT_LE(d.rel(d.max), o.max_error);
+}  // about 22 CPU s (the search goes to a finer grid)
+
+// 8x the RMS target: the issue's bound for the worst case.
+constexpr double kHorseMaxError = 1.6e-3;
+
+TEST(PackMaxErrorHeavy, HorseMaxErrorIsMet) {
+  const prm::Mesh input = shared_mesh("horse.ply");
+  PackOptions o;
+  o.target_error = 2e-4;
+  o.max_error = kHorseMaxError;
+  const prm::pipeline::PackResult r = prm::pipeline::pack(input, o);
+  const prm::DistanceReport d = decoded_distance(input, r);
+  std::printf("horse at 2e-4 with max %.3g: %zu bytes, RMS %.3e, max %.3e\n", o.max_error, r.stream.size(),
+              d.rel(d.rms), d.rel(d.max));
+  EXPECT_LE(d.rel(d.rms), o.target_error);
+  EXPECT_LE(d.rel(d.max), o.max_error);
+}
+
+#endif
+
+}  // namespace

@@ -1,0 +1,35 @@
+// Local refinement for a bounded worst-case error (issue 22): the hexagonal resampling (paper §2.2) cannot follow a
+// feature narrower than the grid, so a thin tip (an ear, a hoof's edge, a tail) is cut off and the input's vertices
+// there lie far from the piecewise regular mesh; they make its Hausdorff distance 25x its RMS error on the horse.
+// This stage inserts irregular vertices where the mesh is farther than a bound from the input, in both directions:
+// at the input vertices the mesh misses (in>pr), and at the input's closest point to a triangle's centroid or edge
+// midpoint that strays from it (pr>in: a triangle bridging a notch, e.g. between an ear and the head). Each splits
+// the closest triangle, or its closest edge, farthest deviation first, round after round until none is left or the
+// budget is spent. Lattice vertices and the regular triangles away from the inserted vertices are untouched.
+#pragma once
+
+#include <cstddef>
+
+#include "prm/aabb_tree.h"
+#include "prm/mesh.h"
+#include "prm/remesh/resample.h"
+
+namespace prm::remesh {
+
+struct DeviationRefinementOptions {
+  double max_deviation = 0;  // model units: input vertices farther than this from the mesh are inserted (<= 0: none)
+  double max_insert_share = 0.015;  // at most this share of the mesh's vertices is inserted
+};
+
+struct DeviationRefinementStats {
+  size_t inserted = 0;  // vertices inserted
+  size_t refused = 0;   // deviations left: every split would turn a triangle over
+  size_t rounds = 0;
+};
+
+// prm: a merged PRM with its labels (the new vertices and triangles are labelled; all triangles are relabelled).
+// input_tree: the input's closest-point tree.
+DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, const AabbTree& input_tree,
+                                           const DeviationRefinementOptions& options);
+
+}  // namespace prm::remesh
