@@ -4,6 +4,7 @@
 # under ASan+UBSan. Totals per target are appended to a log.
 #
 #   codec/fuzz/run.sh [SECONDS_PER_TARGET] [TARGET...]      (default: 300 s each, all four targets)
+#   codec/fuzz/run.sh 0 [TARGET...]                         (no fuzzing: the ASan pass over the kept corpora only)
 #
 # Two builds (codec/fuzz/README.md says why): $FUZZ_DIR/ubsan, UBSan only, for throughput, and $FUZZ_DIR/asan,
 # ASan+UBSan, for the pass over the corpus (memory errors that UBSan cannot see). Both trace comparisons in the
@@ -107,11 +108,13 @@ for t in $targets; do
   [ -n "$runs" ] && limit="-runs=$runs"
   log=$fuzz_dir/$t.log
   echo "== $t: $limit, corpus $corpus" >&2
-  status=0
-  # shellcheck disable=SC2086
-  nice -n "$niceness" "$fuzz_dir/ubsan/codec/prm_fuzz_$t" $limit -rss_limit_mb="$rss_mb" -timeout=20 \
-      -print_final_stats=1 -artifact_prefix="$fuzz_dir/artifacts/$t-" $extra "$corpus" >"$log" 2>&1 || status=$?
-  log_line "$log" ubsan "$t" "$status" "$seconds"
+  if [ "$seconds" != 0 ] || [ -n "$runs" ]; then
+    status=0
+    # shellcheck disable=SC2086
+    nice -n "$niceness" "$fuzz_dir/ubsan/codec/prm_fuzz_$t" $limit -rss_limit_mb="$rss_mb" -timeout=20 \
+        -print_final_stats=1 -artifact_prefix="$fuzz_dir/artifacts/$t-" $extra "$corpus" >"$log" 2>&1 || status=$?
+    log_line "$log" ubsan "$t" "$status" "$seconds"
+  fi
   [ "$asan_pass" = 1 ] || continue
   # Every unit of the corpus once under ASan+UBSan (-runs=0: read, execute, stop; nothing is added).
   status=0
