@@ -107,8 +107,8 @@ for t in $targets; do
   limit="-max_total_time=$seconds"
   [ -n "$runs" ] && limit="-runs=$runs"
   log=$fuzz_dir/$t.log
-  echo "== $t: $limit, corpus $corpus" >&2
   if [ "$seconds" != 0 ] || [ -n "$runs" ]; then
+    echo "== $t: $limit, corpus $corpus" >&2
     status=0
     # shellcheck disable=SC2086
     nice -n "$niceness" "$fuzz_dir/ubsan/codec/prm_fuzz_$t" $limit -rss_limit_mb="$rss_mb" -timeout=20 \
@@ -117,6 +117,7 @@ for t in $targets; do
   fi
   [ "$asan_pass" = 1 ] || continue
   # Every unit of the corpus once under ASan+UBSan (-runs=0: read, execute, stop; nothing is added).
+  echo "== $t: ASan pass over corpus $corpus" >&2
   status=0
   # shellcheck disable=SC2086
   nice -n "$niceness" "$fuzz_dir/asan/codec/prm_fuzz_$t" -runs=0 -rss_limit_mb="$rss_mb" -timeout=60 \
