@@ -14,7 +14,8 @@
 # Environment: FUZZ_DIR (default build-fuzz: build trees, corpora, artifacts, log), PRM (a built `prm` tool for the
 # real PRM seeds; default build/tools/prm/prm, skipped with a note when absent), RSS_MB (default 1024: the decoder's
 # memory follows what it decodes, spec §4.5, so a larger footprint is a finding), JOBS (build jobs, default 2),
-# NICE (default 15), RUNS (when set, stop each target after this many executions instead of at SECONDS),
+# NICE (default 15), RUNS (when set, stop each target after this many executions, or at SECONDS if that is not 0 and
+# comes first),
 # ASAN_PASS (default 1; 0 skips the ASan pass).
 #
 # Corpora live in $FUZZ_DIR/corpus/<target>/ and grow from run to run (they stay out of git); crashes, leaks, timeouts
@@ -104,8 +105,9 @@ for t in $targets; do
     extra="-max_len=12288"  # the largest seed (feline_5k encoded at 10 bits) is 10.7 KB
   fi
   [ "$t" = prm_roundtrip_fuzzer ] && extra="-max_len=64 -len_control=0"
-  limit="-max_total_time=$seconds"
-  [ -n "$runs" ] && limit="-runs=$runs"
+  limit=""  # whichever comes first
+  [ "$seconds" != 0 ] && limit="-max_total_time=$seconds"
+  [ -n "$runs" ] && limit="$limit -runs=$runs"
   log=$fuzz_dir/$t.log
   if [ "$seconds" != 0 ] || [ -n "$runs" ]; then
     echo "== $t: $limit, corpus $corpus" >&2
