@@ -1,16 +1,27 @@
 #!/bin/sh
-# Fuzzing as a habit: builds the four codec fuzz targets with clang (ASan+UBSan, libFuzzer) in their own build
-# directory, seeds a kept corpus per target, and runs the targets one after the other, niced, for SECONDS each.
+# Fuzzing as a habit: builds the four codec fuzz targets with clang and libFuzzer, seeds a kept corpus per target,
+# fuzzes each target in turn (one process, niced) with a fast UBSan build, then runs every unit of its corpus once
+# under ASan+UBSan. Totals per target are appended to a log.
 #
 #   codec/fuzz/run.sh [SECONDS_PER_TARGET] [TARGET...]      (default: 300 s each, all four targets)
+#   codec/fuzz/run.sh 0 [TARGET...]                         (no fuzzing: the ASan pass over the kept corpora only)
 #
-# Environment: FUZZ_DIR (default build-fuzz: build tree, corpora, artifacts, log), PRM (a built `prm` tool for the
+# Two builds (codec/fuzz/README.md says why): $FUZZ_DIR/ubsan, UBSan only, for throughput, and $FUZZ_DIR/asan,
+# ASan+UBSan, for the pass over the corpus (memory errors that UBSan cannot see). Both trace comparisons in the
+# container code only (PRM_FUZZ_TRACE_CMP_CONTAINER_ONLY): elsewhere comparison tracing cost about 60% of an execution
+# and guides no mutation, since range-coded bytes are never compared as they are.
+#
+# Environment: FUZZ_DIR (default build-fuzz: build trees, corpora, artifacts, log), PRM (a built `prm` tool for the
 # real PRM seeds; default build/tools/prm/prm, skipped with a note when absent), RSS_MB (default 1024: the decoder's
-# memory follows what it decodes, spec §4.5, so a larger footprint is a finding), JOBS (build jobs, default 2).
+# memory follows what it decodes, spec §4.5, so a larger footprint is a finding), JOBS (build jobs, default 2),
+# NICE (default 15), RUNS (when set, stop each target after this many executions, or at SECONDS if that is not 0 and
+# comes first),
+# ASAN_PASS (default 1; 0 skips the ASan pass).
 #
 # Corpora live in $FUZZ_DIR/corpus/<target>/ and grow from run to run (they stay out of git); crashes, leaks, timeouts
-# and out-of-memory inputs land in $FUZZ_DIR/artifacts/. Each run appends one line per target to $FUZZ_DIR/fuzz-log.tsv:
-# date, commit, target, executions, seconds, executions per second, findings. codec/fuzz/README.md records the totals.
+# and out-of-memory inputs land in $FUZZ_DIR/artifacts/. Each run appends one line per target and pass to
+# $FUZZ_DIR/fuzz-log.tsv: date, commit, build, target, executions, seconds, executions per second, finding.
+# `codec/fuzz/totals.sh` sums the log per target; codec/fuzz/README.md records the totals.
 set -eu
 
 seconds=${1:-300}
@@ -21,15 +32,25 @@ fuzz_dir=${FUZZ_DIR:-$root/build-fuzz}
 prm=${PRM:-$root/build/tools/prm/prm}
 rss_mb=${RSS_MB:-1024}
 jobs=${JOBS:-2}
+niceness=${NICE:-15}
+runs=${RUNS:-}
+asan_pass=${ASAN_PASS:-1}
 
 command -v clang++ >/dev/null || { echo "run.sh: clang++ is needed (libFuzzer)" >&2; exit 3; }
 launcher=""
 command -v ccache >/dev/null && launcher="-DCMAKE_CXX_COMPILER_LAUNCHER=ccache"
-cmake -S "$root" -B "$fuzz_dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ $launcher \
-      -DPRM_BUILD_FUZZERS=ON -DPRM_SANITIZE=address,undefined -DPRM_BUILD_TESTS=OFF -DPRM_BUILD_BENCH=OFF >/dev/null
 set --
 for t in $targets; do set -- "$@" "prm_fuzz_$t"; done
-nice -n 10 cmake --build "$fuzz_dir" -j "$jobs" --target "$@"
+builds="ubsan"
+[ "$asan_pass" = 1 ] && builds="ubsan asan"
+for b in $builds; do
+  san=undefined
+  [ "$b" = asan ] && san=address,undefined
+  cmake -S "$root" -B "$fuzz_dir/$b" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ $launcher \
+        -DPRM_BUILD_FUZZERS=ON -DPRM_FUZZ_TRACE_CMP_CONTAINER_ONLY=ON -DPRM_SANITIZE=$san -DPRM_BUILD_TESTS=OFF \
+        -DPRM_BUILD_BENCH=OFF >/dev/null
+  nice -n "$niceness" cmake --build "$fuzz_dir/$b" -j "$jobs" --target "$@"
+done
 
 mkdir -p "$fuzz_dir/artifacts"
 tmp=$(mktemp -d)
@@ -50,17 +71,28 @@ seed_decode() {
       [ -f "$meshes/$m" ] || continue
       # made once: the corpus is kept, and a pack takes a while
       if [ ! -f "$dir/seed-pack-$m" ] &&
-         nice -n 10 "$prm" pack "$meshes/$m" -o "$tmp/s.prm" --target-error 1e-3 >/dev/null 2>&1; then
+         nice -n "$niceness" "$prm" pack "$meshes/$m" -o "$tmp/s.prm" --target-error 1e-3 >/dev/null 2>&1; then
         (printf '\001'; cat "$tmp/s.prm") >"$dir/seed-pack-$m"
       fi
       if [ ! -f "$dir/seed-encode-$m" ] &&
-         nice -n 10 "$prm" encode "$meshes/$m" -o "$tmp/s.prm" --bits 10 >/dev/null 2>&1; then
+         nice -n "$niceness" "$prm" encode "$meshes/$m" -o "$tmp/s.prm" --bits 10 >/dev/null 2>&1; then
         (printf '\001'; cat "$tmp/s.prm") >"$dir/seed-encode-$m"
       fi
     done
   else
     echo "run.sh: no prm tool at $prm: the decode corpus gets the conformance streams only" >&2
   fi
+}
+
+# One line of the log from libFuzzer's final statistics in $1 (build $2, target $3, exit status $4, seconds asked $5).
+log_line() {
+  n=$(sed -n 's/^stat::number_of_executed_units: *//p' "$1" | tail -n 1)
+  secs=$(sed -n 's/^Done [0-9]* runs in \([0-9]*\) second.*/\1/p' "$1" | tail -n 1)
+  rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$1" | tail -n 1)
+  finding=none
+  [ "$4" -ne 0 ] && finding="exit $4: $(grep -m 1 -E 'ERROR|SUMMARY|Test unit written' "$1" || true)"
+  printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$(date -u +%Y-%m-%dT%H:%MZ)" "$commit" "$2" "$3" "${n:-?}" \
+      "${secs:-$5}" "${rate:-?}" "$finding" | tee -a "$fuzz_dir/fuzz-log.tsv"
 }
 
 commit=$(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown)
@@ -70,21 +102,28 @@ for t in $targets; do
   extra=""
   if [ "$t" = decode_fuzzer ]; then
     seed_decode "$corpus"
-    extra="-max_len=8192"
+    extra="-max_len=12288"  # the largest seed (feline_5k encoded at 10 bits) is 10.7 KB
   fi
   [ "$t" = prm_roundtrip_fuzzer ] && extra="-max_len=64 -len_control=0"
+  limit=""  # whichever comes first
+  [ "$seconds" != 0 ] && limit="-max_total_time=$seconds"
+  [ -n "$runs" ] && limit="$limit -runs=$runs"
   log=$fuzz_dir/$t.log
-  echo "== $t: $seconds s, corpus $corpus" >&2
+  if [ "$seconds" != 0 ] || [ -n "$runs" ]; then
+    echo "== $t: $limit, corpus $corpus" >&2
+    status=0
+    # shellcheck disable=SC2086
+    nice -n "$niceness" "$fuzz_dir/ubsan/codec/prm_fuzz_$t" $limit -rss_limit_mb="$rss_mb" -timeout=20 \
+        -print_final_stats=1 -artifact_prefix="$fuzz_dir/artifacts/$t-" $extra "$corpus" >"$log" 2>&1 || status=$?
+    log_line "$log" ubsan "$t" "$status" "$seconds"
+  fi
+  [ "$asan_pass" = 1 ] || continue
+  # Every unit of the corpus once under ASan+UBSan (-runs=0: read, execute, stop; nothing is added).
+  echo "== $t: ASan pass over corpus $corpus" >&2
   status=0
   # shellcheck disable=SC2086
-  nice -n 10 "$fuzz_dir/codec/prm_fuzz_$t" -max_total_time="$seconds" -rss_limit_mb="$rss_mb" -timeout=20 \
-      -print_final_stats=1 -artifact_prefix="$fuzz_dir/artifacts/$t-" $extra "$corpus" >"$log" 2>&1 || status=$?
-  runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -n 1)
-  secs=$(sed -n 's/^Done [0-9]* runs in \([0-9]*\) second.*/\1/p' "$log" | tail -n 1)
-  [ -n "$secs" ] || secs=$seconds
-  rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -n 1)
-  finding=none
-  [ "$status" -ne 0 ] && finding="exit $status: $(grep -m 1 -E 'ERROR|SUMMARY|Test unit written' "$log" || true)"
-  printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$(date -u +%Y-%m-%dT%H:%MZ)" "$commit" "$t" "${runs:-?}" "$secs" \
-      "${rate:-?}" "$finding" | tee -a "$fuzz_dir/fuzz-log.tsv"
+  nice -n "$niceness" "$fuzz_dir/asan/codec/prm_fuzz_$t" -runs=0 -rss_limit_mb="$rss_mb" -timeout=60 \
+      -print_final_stats=1 -artifact_prefix="$fuzz_dir/artifacts/$t-asan-" $extra "$corpus" >"$log.asan" 2>&1 ||
+      status=$?
+  log_line "$log.asan" asan-corpus "$t" "$status" 0
 done

@@ -1,12 +1,16 @@
 // Issue 17's zero-area sweep, in small (bench/zero_area_sweep.sh runs it over every shared and dense CGAL mesh):
 // `pack` with a target error, at two targets (2e-4 at 10 bits, 1e-4 at 11: the bit depths the search picks for the
-// box and the elephant; one step scale; the elephant at 5e-4 and 2e-4), on the three awkward cases (a bowtie, CGAL's elephant, a 1 x 1 x 0.002
-// box) and small real meshes. Every stream decodes, no decoded triangle has zero area, no two decoded vertices share
-// a position, and on the real meshes the quantized separation turns no face away from the input (on the bowtie,
-// which repair makes a two-sided sheet, there is no side; the box, two steps thick at 10 bits, is the known case
-// where its last pass still does). Heavy: about two minutes in Release.
+// box and the elephant; one step scale; the elephant at 5e-4 and 2e-4), on the three awkward cases (a bowtie, CGAL's
+// elephant, a 1 x 1 x 0.002 box) and small real meshes. Every stream decodes, no decoded triangle has zero area, no
+// two decoded vertices share a position, and except on the bowtie (which repair makes a two-sided sheet: there is no
+// side) the faces the quantization turns away from the input, and the decoded triangles facing away from it, are 0
+// but on feline_5k (issue 17): at 2e-4, 3 decoded faces that the remesher already placed facing away; at 1e-4, 2 that
+// the separation does not mend (before: 8 turned by its last pass, 18 decoded). The box, two quantization steps thick
+// at 10 bits (before: 8 and 11), is the other case where the last pass turned faces. Heavy: about four minutes in
+// Release.
 #include <gtest/gtest.h>
 
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <iterator>
@@ -26,10 +30,16 @@ struct Target {
 };
 constexpr Target kTargets[] = {{2e-4, 10}, {1e-4, 11}};
 
-void expect_clean_streams(const prm::Mesh& input, const std::string& name, bool real,
+constexpr size_t kNoSide = SIZE_MAX;  // a two-sided sheet: facing away from the input means nothing
+
+// max_turned: faces the quantization turned away from the input, and decoded triangles facing away from it, allowed
+// at each target (kNoSide: not checked).
+void expect_clean_streams(const prm::Mesh& input, const std::string& name, const std::vector<size_t>& max_turned,
                           const std::vector<Target>& targets = {std::begin(kTargets), std::end(kTargets)}) {
+  ASSERT_EQ(max_turned.size(), targets.size());
   const prm::Mesh reference = prm::pipeline::pack_reference(input);
-  for (const Target& target : targets) {
+  for (size_t k = 0; k < targets.size(); ++k) {
+    const Target& target = targets[k];
     SCOPED_TRACE(name + " at " + std::to_string(target.error));
     prm::pipeline::PackOptions o;
     o.target_error = target.error;
@@ -42,12 +52,13 @@ void expect_clean_streams(const prm::Mesh& input, const std::string& name, bool 
     const prm::pipeline::StreamCheck c = prm::pipeline::check_decoded(decoded.value, &reference);
     EXPECT_EQ(c.zero_area, 0u);
     EXPECT_EQ(c.coincident, 0u);
-    if (real) {
-      EXPECT_EQ(r.remesh.prm.stats.quantized_turned, 0u);
+    if (max_turned[k] != kNoSide) {
+      EXPECT_LE(r.remesh.prm.stats.quantized_turned, max_turned[k]);
+      EXPECT_LE(c.turned, max_turned[k]);
     }
     EXPECT_LE(r.remesh.error.rms, target.error);
-    std::printf("%s at %.0e: %d bits, %zu bytes, %zu vertices (%zu moved, %zu edges collapsed, %zu turned by the "
-                "last pass), %zu decoded triangles facing away from the input\n",
+    std::printf("%s at %.0e: %d bits, %zu bytes, %zu vertices (%zu moved, %zu edges collapsed, %zu left turned by the "
+                "quantization), %zu decoded triangles facing away from the input\n",
                 name.c_str(), target.error, r.bits, r.stream.size(), decoded.value.num_vertices(),
                 r.remesh.prm.stats.quantized_moves, r.remesh.prm.stats.quantized_collapses,
                 r.remesh.prm.stats.quantized_turned, c.turned);
@@ -55,20 +66,20 @@ void expect_clean_streams(const prm::Mesh& input, const std::string& name, bool 
 }
 
 TEST(PackZeroArea, AwkwardCases) {
-  expect_clean_streams(prm::test::bowtie(), "bowtie", false, {{5e-4, 12}, {2e-4, 12}});  // 1e-4: too many vertices
-  expect_clean_streams(prm::test::box(1, 1, 0.002, 10), "1 x 1 x 0.002 box", false);
+  // 1e-4: too many vertices
+  expect_clean_streams(prm::test::bowtie(), "bowtie", {kNoSide, kNoSide}, {{5e-4, 12}, {2e-4, 12}});
+  expect_clean_streams(prm::test::box(1, 1, 0.002, 10), "1 x 1 x 0.002 box", {0, 0});
   const std::string elephant = std::string(PRM_CGAL_MESHES) + "/elephant.off";
   // 1e-4 makes 72k vertices of its 2.8k: 5e-4 (pack_degenerate_test's) keeps the test short.
   if (std::filesystem::exists(elephant))
-    expect_clean_streams(prm::read_mesh(elephant), "elephant.off", true, {{5e-4, 11}, {2e-4, 10}});
+    expect_clean_streams(prm::read_mesh(elephant), "elephant.off", {0, 0}, {{5e-4, 11}, {2e-4, 10}});
 }
 
-// feline_5k at 1e-4 makes 126k vertices, and its quantized separation's last pass still turns 8 faces there (issue
-// 17, bench/README.md "Zero-area sweep"): 2e-4 only.
+// feline_5k at 1e-4 makes 126k vertices (about 30 s of the test).
 TEST(PackZeroArea, SmallRealMeshes) {
   const std::string dir = std::string(PRM_SHARED_MESHES) + "/";
-  expect_clean_streams(prm::read_mesh(dir + "rabbit_1k_decimated.off"), "rabbit_1k_decimated.off", true);
-  expect_clean_streams(prm::read_mesh(dir + "feline_5k.obj"), "feline_5k.obj", true, {{2e-4, 10}});
+  expect_clean_streams(prm::read_mesh(dir + "rabbit_1k_decimated.off"), "rabbit_1k_decimated.off", {0, 0});
+  expect_clean_streams(prm::read_mesh(dir + "feline_5k.obj"), "feline_5k.obj", {3, 2});
 }
 
 }  // namespace

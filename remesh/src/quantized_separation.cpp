@@ -81,9 +81,48 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* i
     return triangle_normal_area2(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]);
   };
   auto against = [](const Q3& n, const Vec3& r) { return n[0] * r[0] + n[1] * r[1] + n[2] * r[2] <= 0; };
+  bool use_input = true;  // false in the last pass, which lets the input's side go
+  // With the input: the normals of the input's faces nearest the centroid of face f as the remesher placed it and as
+  // quantized (where the decoder puts it; the orientation test of the remesher's invariants, as bench's stream check
+  // applies it to the decoded stream), computed when first needed and again after a corner moves.
+  std::vector<std::array<Vec3, 2>> input_normal(input && tree ? nf : 0);
+  std::vector<uint8_t> input_normal_known(input_normal.size(), 0);
+  auto input_normal_near = [&](const Vec3& x) {
+    const Tri& s = input->triangles[tree->closest(x).face];
+    return triangle_normal_area2(input->positions[s[0]], input->positions[s[1]], input->positions[s[2]]);
+  };
+  auto dequantized_centroid = [&](const Q3 c[3]) {
+    Vec3 x{0, 0, 0};
+    for (int i = 0; i < 3; ++i)
+      for (int a = 0; a < 3; ++a)
+        x[static_cast<size_t>(a)] += frame.to_real(static_cast<double>(c[i][static_cast<size_t>(a)]), a) / 3.0;
+    return x;
+  };
+  auto input_normals_of = [&](size_t f) -> const std::array<Vec3, 2>& {
+    if (!input_normal_known[f]) {
+      const Tri& t = m.triangles[f];
+      const Q3 c[3] = {q[t[0]], q[t[1]], q[t[2]]};
+      input_normal[f] = {input_normal_near((m.positions[t[0]] + m.positions[t[1]] + m.positions[t[2]]) * (1.0 / 3.0)),
+                         input_normal_near(dequantized_centroid(c))};
+      input_normal_known[f] = 1;
+    }
+    return input_normal[f];
+  };
+  // A face that faced the input's side as remeshed and whose quantized normal is 90 degrees or more from the input's
+  // where the decoder puts it: turned away from the input by the rounding (a rim sliver of a thin part, its normal
+  // rounded square to the input's, or a sliver the rounding moved over a crease) while within 90 degrees of its own
+  // normal. A face the remesher left facing away (the twin sheets of a two-sided part) is not the rounding's doing.
+  auto turned_from_input = [&](size_t f, const Q3& n) {
+    if (input_normal.empty() || is_zero(n)) return false;
+    const std::array<Vec3, 2>& in = input_normals_of(f);
+    return prm::dot(real_normal(f), in[0]) > 0 && against(n, in[1]);
+  };
   // What the stream would not hold as remeshed: a face of zero area once quantized, or one that the rounding turns
-  // over (a sliver whose quantized normal points against its normal before).
-  auto turned_by_rounding = [&](size_t f) { return !is_zero(normal(f)) && against(normal(f), real_normal(f)); };
+  // over (a sliver whose quantized normal points against its normal before, or away from the input's side).
+  auto turned_by_rounding = [&](size_t f) {
+    const Q3 n = normal(f);
+    return !is_zero(n) && (against(n, real_normal(f)) || (use_input && turned_from_input(f, n)));
+  };
   auto broken = [&](size_t f) { return is_zero(normal(f)) || turned_by_rounding(f); };
   for (size_t f = 0; f < nf; ++f) {
     st.degenerate_faces += is_zero(normal(f));
@@ -101,7 +140,7 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* i
   // (strict), or none (not strict: a sliver thinner than a step, say on the frame's boundary where the side it
   // faced has no quantization point, may come out either way; a thin triangle is better than none). Either way, with
   // the input at hand, a moved face never faces away from the input's surface next to it.
-  bool strict = true, use_input = true;
+  bool strict = true;
   auto reference = [&](size_t f) { return strict ? real_normal(f) : Vec3{0, 0, 0}; };
   // Does a face with corners r (real coordinates) and normal nr face the input's side: the orientation test of the
   // remesher's invariants, against the input's normal at the point nearest its centroid.
@@ -144,11 +183,14 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* i
       for (int i = 0; i < 3; ++i) c[i] = t[static_cast<size_t>(i)] == v ? p : q[t[static_cast<size_t>(i)]];
       const Q3 n = cross(minus(c[1], c[0]), minus(c[2], c[0]));
       const Q3 old = normal(f);
+      // With the input, the moved face as quantized must face the input's side where it moves to.
+      const bool away = use_input && !input_normal.empty() && !is_zero(n) &&
+                        against(n, input_normal_near(dequantized_centroid(c)));
       if (turned_by_rounding(f)) {
         if (is_zero(n)) return -1;
-        fixed += !against(n, real_normal(f));
+        fixed += !against(n, real_normal(f)) && !away;
       } else if (!is_zero(old)) {
-        if (is_zero(n) || dot(n, old) <= 0) return -1;
+        if (is_zero(n) || dot(n, old) <= 0 || away) return -1;
       } else if (!is_zero(n)) {
         const Vec3 r = reference(f);
         if (n[0] * r[0] + n[1] * r[1] + n[2] * r[2] < 0) return -1;
@@ -198,14 +240,14 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* i
     const Move near = best_move_within(v, 2);
     return near.found ? near : best_move_within(v, 3);
   };
-  std::vector<uint32_t> loose;  // vertices the last pass moved
   auto apply = [&](size_t v, const Q3& to) {
     if (--at[q[v]] == 0) at.erase(q[v]);
     q[v] = to;
     ++at[q[v]];
     m.positions[v] = real_position(v, to);
+    for (uint32_t f : around[v])
+      if (!input_normal_known.empty()) input_normal_known[f] = 0;
     ++st.moved;
-    if (!use_input) loose.push_back(static_cast<uint32_t>(v));
   };
 
   // Zero-area faces, and faces the rounding turned over: move the corner that makes most faces whole, one off the lattices if any can (they are free in
@@ -300,6 +342,7 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* i
         if (c == gone) c = keep;
       around[keep].push_back(f);
       label_face(prm, f);
+      if (!input_normal_known.empty()) input_normal_known[f] = 0;
     }
     around[gone].clear();
     dead_vertex[gone] = 1;
@@ -327,9 +370,38 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* i
     }
   };
 
-  // First keeping each face's side (strictly, then not), then collapsing neighbours that cannot be told apart; a
-  // last pass lets the input's side go, for a two-sided sheet (which repair makes of an open triangle, and which
-  // has no side) and whatever is left.
+  // A face still of zero area or turned by the rounding that no move mends (a sliver on the frame's boundary, where
+  // the side it should face has no quantization point: the 1 x 1 x 0.002 box at 10 and 11 bits, issue 17): one of
+  // its edges collapsed, shortest first, the free end going, if that keeps every face on its side (can_collapse);
+  // the sliver and its neighbour across the edge go.
+  auto collapse_broken = [&] {
+    for (size_t f = 0; f < nf; ++f) {
+      if (dead_face[f] || !broken(f)) continue;
+      const Tri t = m.triangles[f];
+      std::array<std::pair<int64_t, std::array<uint32_t, 2>>, 3> edges;
+      for (size_t i = 0; i < 3; ++i) {
+        const Q3 d = minus(q[t[(i + 1) % 3]], q[t[i]]);
+        edges[i] = {d[0] * d[0] + d[1] * d[1] + d[2] * d[2], {t[i], t[(i + 1) % 3]}};
+      }
+      std::sort(edges.begin(), edges.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+      for (const auto& e : edges) {
+        const bool first_free = prm.vertex_relief[e.second[0]] < 0;
+        const uint32_t gone = first_free ? e.second[0] : e.second[1], keep = first_free ? e.second[1] : e.second[0];
+        if (can_collapse(keep, gone)) {
+          collapse(keep, gone);
+          break;
+        }
+        if (can_collapse(gone, keep)) {
+          collapse(gone, keep);
+          break;
+        }
+      }
+    }
+  };
+
+  // First keeping each face's side (strictly, then not), then collapsing neighbours that cannot be told apart, then
+  // an edge of each face still broken; a last pass lets the input's side go, for a two-sided sheet (which repair
+  // makes of an open triangle, and which has no side) and whatever is left.
   move_zero_area_corners();
   strict = false;
   move_zero_area_corners();
@@ -338,22 +410,13 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* i
     separate_coincident();
   }
   collapse_inseparable();
+  collapse_broken();
   use_input = false;
   move_zero_area_corners();
   separate_coincident();
 
-  // The last pass's price, counted: faces around the vertices it moved that face away from the input.
-  if (input && tree) {
-    std::vector<uint32_t> turned_faces;
-    for (uint32_t v : loose) turned_faces.insert(turned_faces.end(), around[v].begin(), around[v].end());
-    std::sort(turned_faces.begin(), turned_faces.end());
-    turned_faces.erase(std::unique(turned_faces.begin(), turned_faces.end()), turned_faces.end());
-    for (uint32_t f : turned_faces) {
-      const Tri& t = m.triangles[f];
-      const Vec3 r[3] = {m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]};
-      st.turned += !faces_input_side(r, triangle_normal_area2(r[0], r[1], r[2]));
-    }
-  }
+  // The last pass's price, counted: faces that faced the input as remeshed and face away from it as quantized.
+  for (size_t f = 0; f < nf; ++f) st.turned += !dead_face[f] && turned_from_input(f, normal(f));
   for (size_t f = 0; f < nf; ++f) st.unresolved += !dead_face[f] && broken(f);
   for (size_t v = 0; v < nv; ++v) st.unresolved += shares_point(v);
   if (st.collapsed > 0) remove_collapsed(prm, dead_vertex, dead_face);

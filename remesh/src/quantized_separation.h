@@ -16,12 +16,15 @@ namespace prm::remesh {
 
 struct QuantizedSeparationStats {
   size_t degenerate_faces = 0;     // faces of zero area after quantization, before the pass
-  size_t rounding_turned = 0;      // faces whose quantized normal points against their real one, before the pass
+  size_t rounding_turned = 0;      // faces whose quantized normal points against their real one, or (with the input)
+                                   // faces that faced the input as remeshed and do not as quantized, before the pass
   size_t coincident_vertices = 0;  // vertices that shared their quantized position with another, before the pass
   size_t moved = 0;                // vertices moved (to a quantization point; lattice vertices along their height)
   size_t unresolved = 0;           // faces still of zero area or turned, or vertices still sharing a position, after it
-  size_t collapsed = 0;            // edges collapsed: their ends shared a point and neither could move
-  size_t turned = 0;               // faces facing away from the input after the last pass, which lets that go
+  size_t collapsed = 0;            // edges collapsed: their ends shared a point and neither could move, or an edge of
+                                   // a face no move mends (zero area or turned)
+  size_t turned = 0;               // faces that faced the input as remeshed and face away from it as quantized (at
+                                   // the input's face nearest their quantized centroid), after the last pass
 };
 
 // prm: a merged PRM with its labels and frame. A vertex that is not on a lattice moves to one of the quantization
@@ -30,7 +33,9 @@ struct QuantizedSeparationStats {
 // triangle around the vertex keeps a non-zero area and its orientation; moved vertices sit exactly on their
 // quantization point, so that the search and the encoder see the same mesh. With the input and its tree, a move is
 // also refused if a moved triangle would face away from the input's normal at the point nearest its centroid (the
-// orientation test of the remesher's invariants).
+// orientation test of the remesher's invariants), as remeshed and as quantized; and a face that faced the input as
+// remeshed but does not as quantized (its corners rounded over a crease or a thin part's rim) is mended like one
+// the rounding turned over. A face that no move mends has an edge collapsed if that keeps every face's side.
 QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* input = nullptr,
                                                      const AabbTree* tree = nullptr);
 

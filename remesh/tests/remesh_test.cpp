@@ -33,7 +33,7 @@ void expect_input_topology(const Mesh& input, const PrmMesh& prm, const std::str
   EXPECT_EQ(out.repeated_index_faces + out.duplicate_faces, 0u) << name;
 }
 
-// max_turned: faces the quantized separation's last pass may leave turned (0 but for the one known case below).
+// max_turned: faces the quantized separation may leave turned away from the input (0 but for the known cases below).
 void expect_valid_prm(const Mesh& input, const PrmMesh& prm, const std::string& name, size_t max_turned = 0) {
   expect_input_topology(input, prm, name);
   EXPECT_EQ(validate_mesh(prm.mesh).zero_area_faces, 0u) << name;
@@ -154,7 +154,10 @@ TEST(Remesh, TargetErrorOnPaperModels) {
     EXPECT_LE(r.error.rms, 2e-4) << name;
     EXPECT_LE(r.prm.stats.vertices, input.positions.size()) << name;
     EXPECT_GE(regular, 0.84) << name;
-    expect_valid_prm(input, r.prm, name);
+    // bunny_zipper: 3 faces near its closed holes that the quantization turns away from the input and the
+    // separation cannot mend (counted since it looks at every face; the stream of `prm pack --target-error 2e-4
+    // --bits 12 --step-scale 1` had 10 such faces before, 3 now: issue 17).
+    expect_valid_prm(input, r.prm, name, std::string(name) == "bunny_zipper.ply" ? 3 : 0);
   }
 }
 

@@ -159,10 +159,11 @@ void add_pack_command(CLI::App& root) {
                         "triangle loses its area");
     if (const size_t collapsed = r.remesh.prm.stats.quantized_collapses)
       changes.push_back(std::to_string(collapsed) + " remeshed edge(s) collapsed whose two ends the quantization put on "
-                        "one point (one vertex and two zero-area triangles each)");
+                        "one point, or of a sliver no move kept whole and facing the input (one vertex and two "
+                        "triangles each)");
     if (const size_t turned = r.remesh.prm.stats.quantized_turned)
-      changes.push_back(std::to_string(turned) + " remeshed triangle(s) left facing away from the input by the "
-                        "quantization's last separation pass");
+      changes.push_back(std::to_string(turned) + " remeshed triangle(s) facing the input turned away from it by the "
+                        "quantization (what the separation could not mend)");
     const bool general = r.mode == pipeline::PackMode::general;
     std::vector<std::string> notes = r.repair.notes;
     write_file_bytes(opt->output, r.stream);
