@@ -322,7 +322,7 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
   so.samples_per_face = plan.search_samples_per_face;
   const bool sparse = options.metro_samples == 0 && options.target_error > 0 && plan.search_samples_per_face < 10;
   std::unique_ptr<MetroReference> sparse_reference;
-  if (sparse) sparse_reference = std::make_unique<MetroReference>(source, so);
+  if (sparse) sparse_reference = std::make_unique<MetroReference>(reference, so);  // one mesh and tree for both
   remesh::ReliefOptions relief_options;
   relief_options.tau = options.tau;
   relief_options.parallel = options.parallel;
