@@ -55,6 +55,7 @@ PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bit
   auto t0 = std::chrono::steady_clock::now();
   remesh::RemeshOptions ro;
   ro.layout = &ctx.layout;
+  ro.input_tree = &ctx.full.tree();  // the Metro reference's tree of the same mesh (source)
   ro.grid_tolerance = ctx.plan.grid_tolerance;
   ro.accept_error = ctx.plan.accept_error;
   ro.bits = bits;
