@@ -194,6 +194,13 @@ MetroReference::MetroReference(Mesh reference, const MetroOptions& options)
   diagonal_ = bbox_diagonal(*mesh_);
 }
 
+MetroReference::MetroReference(const Mesh* reference, const MetroOptions& options)
+    : mesh_(std::shared_ptr<const Mesh>(std::shared_ptr<const Mesh>(), reference)), options_(options) {
+  require_surface(*mesh_, "A");
+  tree_ = std::make_shared<const AabbTree>(*mesh_);
+  diagonal_ = bbox_diagonal(*mesh_);
+}
+
 MetroReference::MetroReference(const MetroReference& shared, const MetroOptions& options)
     : mesh_(shared.mesh_), options_(options), tree_(shared.tree_), diagonal_(shared.diagonal_) {}
 

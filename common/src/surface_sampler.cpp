@@ -209,7 +209,7 @@ SurfaceSamples sample_surface(const Mesh& mesh, const SamplingOptions& options) 
     std::vector<Vec3> chunk;
     for (size_t c = r.begin(); c != r.end(); ++c) {
       plan.chunk(c, chunk);
-      std::copy(chunk.begin(), chunk.end(), out.points.begin() + static_cast<std::ptrdiff_t>(c * SamplePlan::kSampleChunk));
+      std::copy(chunk.begin(), chunk.end(), out.points.begin() + static_cast<long>(c * SamplePlan::kSampleChunk));
     }
   });
   return out;

@@ -317,7 +317,7 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
   ProgressJob::stage("reliefs");
   MetroOptions mo;
   mo.samples = options.metro_samples;  // 0: Metro's ten per face, as `prm compare` measures
-  const MetroReference reference(source, mo);
+  const MetroReference reference(&source, mo);  // borrowed: source outlives the search
   // The search's own, sparser samples (only where they are fewer than the report's).
   MetroOptions so = mo;
   so.samples_per_face = plan.search_samples_per_face;

@@ -64,16 +64,16 @@ void add_remesh_command(CLI::App& root) {
     ro.target_error = opt->target;
     MetroOptions mo;
     mo.samples = opt->samples;
-    // A fixed grid is measured once, after the resampling: the reference (a copy of the input and its AABB tree) is
+    // A fixed grid is measured once, after the resampling: the reference (the input's AABB tree, the input borrowed) is
     // made then, not held through the resampling's peak of memory. A search measures every round and lends the
     // reference's tree to the remesher.
     std::optional<MetroReference> held;
     if (opt->target > 0) {
-      held.emplace(input, mo);
+      held.emplace(&input, mo);
       ro.input_tree = &held->tree();
     }
     auto error = [&](const remesh::PrmMesh& candidate) {
-      if (!held) held.emplace(input, mo);
+      if (!held) held.emplace(&input, mo);
       const DistanceReport d = held->compare(candidate.mesh);
       return remesh::ErrorEstimate{d.rel(d.rms), d.rel(d.max)};
     };
@@ -84,7 +84,7 @@ void add_remesh_command(CLI::App& root) {
       throw Failure(e.what());
     }
     write_mesh(res.prm.mesh, opt->output, WriteOptions{MeshFormat::Ply, true, true, true});
-    if (!held) held.emplace(input, mo);  // (remesh() measures every grid it makes: not reached)
+    if (!held) held.emplace(&input, mo);  // (remesh() measures every grid it makes: not reached)
     const MetroReference& reference = *held;
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const auto& s = res.prm.stats;

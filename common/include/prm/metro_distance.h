@@ -83,6 +83,8 @@ double bbox_diagonal(const Mesh& mesh);
 class MetroReference {
  public:
   explicit MetroReference(Mesh reference, const MetroOptions& options = {});
+  // Borrows the mesh instead of copying it (48 bytes a vertex): *reference must outlive this object, unchanged.
+  explicit MetroReference(const Mesh* reference, const MetroOptions& options = {});
   // Another sampling of the same reference: shares its mesh and tree (`prm pack`'s sparse search samples and its
   // report's full ones, one copy of a large input instead of two).
   MetroReference(const MetroReference& shared, const MetroOptions& options);
