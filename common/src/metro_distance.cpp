@@ -25,6 +25,19 @@ struct ChunkSum {
   double max = 0;
 };
 
+// The chunk sums added in chunk order (so that the result does not depend on the scheduling): mean, RMS, maximum.
+void summarize(const std::vector<ChunkSum>& sums, size_t n, OneSidedDistance& out) {
+  ChunkSum total;
+  for (const ChunkSum& s : sums) {
+    total.sum += s.sum;
+    total.sum2 += s.sum2;
+    total.max = std::max(total.max, s.max);
+  }
+  out.mean = total.sum / static_cast<double>(n);
+  out.rms = std::sqrt(total.sum2 / static_cast<double>(n));
+  out.max = total.max;
+}
+
 OneSidedDistance one_sided(const std::vector<Vec3>& points, const AabbTree& surface, std::vector<double>* per_sample,
                            Progress* progress) {
   OneSidedDistance out;
@@ -52,15 +65,7 @@ OneSidedDistance one_sided(const std::vector<Vec3>& points, const AabbTree& surf
       if (progress) progress->advance(end - c * kChunk);
     }
   });
-  ChunkSum total;
-  for (const ChunkSum& s : sums) {
-    total.sum += s.sum;
-    total.sum2 += s.sum2;
-    total.max = std::max(total.max, s.max);
-  }
-  out.mean = total.sum / static_cast<double>(n);
-  out.rms = std::sqrt(total.sum2 / static_cast<double>(n));
-  out.max = total.max;
+  summarize(sums, n, out);
   return out;
 }
 
@@ -94,15 +99,7 @@ OneSidedDistance one_sided(const SamplePlan& plan, const AabbTree& surface, Prog
       if (progress) progress->advance(points.size());
     }
   });
-  ChunkSum total;
-  for (const ChunkSum& s : sums) {
-    total.sum += s.sum;
-    total.sum2 += s.sum2;
-    total.max = std::max(total.max, s.max);
-  }
-  out.mean = total.sum / static_cast<double>(n);
-  out.rms = std::sqrt(total.sum2 / static_cast<double>(n));
-  out.max = total.max;
+  summarize(sums, n, out);
   return out;
 }
 
