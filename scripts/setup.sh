@@ -19,6 +19,7 @@ packages=(
   libopenmesh-dev                     # half-edge mesh for the remesher's collapses and flips
   libcgal-demo                        # CGAL's data set: real meshes for tests and benches
   python3                             # bench scripts' tables
+  gnuplot-nox                         # bench scripts' plots (bench/scale_plot.gp: PNG through pngcairo)
   emscripten chromium                 # web/: the decoder in WebAssembly, the viewer's headless browser test
 )
 # The Khronos glTF-Validator (npm, run by the glTF tests) needs node and npm: Debian's, unless some node is there.

@@ -25,6 +25,19 @@ struct ChunkSum {
   double max = 0;
 };
 
+// The chunk sums added in chunk order (so that the result does not depend on the scheduling): mean, RMS, maximum.
+void summarize(const std::vector<ChunkSum>& sums, size_t n, OneSidedDistance& out) {
+  ChunkSum total;
+  for (const ChunkSum& s : sums) {
+    total.sum += s.sum;
+    total.sum2 += s.sum2;
+    total.max = std::max(total.max, s.max);
+  }
+  out.mean = total.sum / static_cast<double>(n);
+  out.rms = std::sqrt(total.sum2 / static_cast<double>(n));
+  out.max = total.max;
+}
+
 OneSidedDistance one_sided(const std::vector<Vec3>& points, const AabbTree& surface, std::vector<double>* per_sample,
                            Progress* progress) {
   OneSidedDistance out;
@@ -52,15 +65,41 @@ OneSidedDistance one_sided(const std::vector<Vec3>& points, const AabbTree& surf
       if (progress) progress->advance(end - c * kChunk);
     }
   });
-  ChunkSum total;
-  for (const ChunkSum& s : sums) {
-    total.sum += s.sum;
-    total.sum2 += s.sum2;
-    total.max = std::max(total.max, s.max);
-  }
-  out.mean = total.sum / static_cast<double>(n);
-  out.rms = std::sqrt(total.sum2 / static_cast<double>(n));
-  out.max = total.max;
+  summarize(sums, n, out);
+  return out;
+}
+
+// The same over samples computed chunk by chunk (SamplePlan's chunks are kChunk samples): equal to the above on the
+// stored samples, bit for bit, without storing them.
+static_assert(SamplePlan::kSampleChunk == kChunk, "the sums are per chunk of kChunk samples");
+OneSidedDistance one_sided(const SamplePlan& plan, const AabbTree& surface, Progress* progress) {
+  OneSidedDistance out;
+  const size_t n = plan.size();
+  out.samples = n;
+  out.vertex_samples = plan.vertex_samples;
+  out.edge_samples = plan.edge_samples;
+  out.face_samples = plan.face_samples;
+  out.area = plan.area;
+  if (n == 0 || surface.empty()) return out;
+  std::vector<ChunkSum> sums(plan.chunks());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, sums.size(), 1), [&](const tbb::blocked_range<size_t>& r) {
+    std::vector<Vec3> points;
+    for (size_t c = r.begin(); c != r.end(); ++c) {
+      plan.chunk(c, points);
+      ChunkSum s;
+      AabbTree::Hit hint;
+      for (const Vec3& p : points) {
+        surface.closest(p, hint);
+        const double d = std::sqrt(hint.distance2);
+        s.sum += d;
+        s.sum2 += d * d;
+        s.max = std::max(s.max, d);
+      }
+      sums[c] = s;
+      if (progress) progress->advance(points.size());
+    }
+  });
+  summarize(sums, n, out);
   return out;
 }
 
@@ -136,12 +175,11 @@ DistanceReport metro_distance(const Mesh& a, const Mesh& b, const MetroOptions& 
   const SamplingOptions so = sampling_options(options, sample_count(options, a, b));
   // Each preparation is parallel inside; running them one after the other keeps all cores busy without nesting.
   const AabbTree tree_a(a), tree_b(b);
-  const SurfaceSamples samples_a = sample_surface(a, so), samples_b = sample_surface(b, so);
+  const SamplePlan samples_a(a, so), samples_b(b, so);
   std::unique_ptr<Progress> progress;
-  if (options.progress)
-    progress = std::make_unique<Progress>("compare", samples_a.points.size() + samples_b.points.size());
-  const OneSidedDistance ab = one_sided(samples_a, tree_b, nullptr, progress.get());
-  const OneSidedDistance ba = one_sided(samples_b, tree_a, nullptr, progress.get());
+  if (options.progress) progress = std::make_unique<Progress>("compare", samples_a.size() + samples_b.size());
+  const OneSidedDistance ab = one_sided(samples_a, tree_b, progress.get());
+  const OneSidedDistance ba = one_sided(samples_b, tree_a, progress.get());
   if (progress) progress->finish();
   return combine(ab, ba, bbox_diagonal(a));
 }
@@ -186,16 +224,27 @@ std::vector<DeviationSite> worst_deviations(const Mesh& a, const Mesh& b, size_t
 }
 
 MetroReference::MetroReference(Mesh reference, const MetroOptions& options)
-    : mesh_(std::move(reference)), options_(options) {
-  require_surface(mesh_, "A");
-  tree_ = AabbTree(mesh_);
-  diagonal_ = bbox_diagonal(mesh_);
+    : mesh_(std::make_shared<const Mesh>(std::move(reference))), options_(options) {
+  require_surface(*mesh_, "A");
+  tree_ = std::make_shared<const AabbTree>(*mesh_);
+  diagonal_ = bbox_diagonal(*mesh_);
 }
 
-std::shared_ptr<const SurfaceSamples> MetroReference::samples_for(size_t count) const {
+MetroReference::MetroReference(const Mesh* reference, const MetroOptions& options)
+    : mesh_(std::shared_ptr<const Mesh>(std::shared_ptr<const Mesh>(), reference)), options_(options) {
+  require_surface(*mesh_, "A");
+  tree_ = std::make_shared<const AabbTree>(*mesh_);
+  diagonal_ = bbox_diagonal(*mesh_);
+}
+
+MetroReference::MetroReference(const MetroReference& shared, const MetroOptions& options)
+    : mesh_(shared.mesh_), options_(options), tree_(shared.tree_), diagonal_(shared.diagonal_) {}
+
+std::shared_ptr<const SamplePlan> MetroReference::samples_for(size_t count) const {
   std::lock_guard<std::mutex> lock(mutex_);
   if (!samples_ || samples_count_ != count) {
-    samples_ = std::make_shared<const SurfaceSamples>(sample_surface(mesh_, sampling_options(options_, count)));
+    samples_.reset();  // before the new plan is made, not after
+    samples_ = std::make_shared<const SamplePlan>(*mesh_, sampling_options(options_, count));
     samples_count_ = count;
   }
   return samples_;
@@ -203,15 +252,14 @@ std::shared_ptr<const SurfaceSamples> MetroReference::samples_for(size_t count) 
 
 DistanceReport MetroReference::compare(const Mesh& candidate) const {
   require_surface(candidate, "B");
-  const size_t count = sample_count(options_, mesh_, candidate);
-  const std::shared_ptr<const SurfaceSamples> samples_a = samples_for(count);
+  const size_t count = sample_count(options_, *mesh_, candidate);
+  const std::shared_ptr<const SamplePlan> samples_a = samples_for(count);
   const AabbTree tree_b(candidate);
-  const SurfaceSamples samples_b = sample_surface(candidate, sampling_options(options_, count));
+  const SamplePlan samples_b(candidate, sampling_options(options_, count));
   std::unique_ptr<Progress> progress;
-  if (options_.progress)
-    progress = std::make_unique<Progress>("compare", samples_a->points.size() + samples_b.points.size());
-  const OneSidedDistance ab = one_sided(*samples_a, tree_b, nullptr, progress.get());
-  const OneSidedDistance ba = one_sided(samples_b, tree_, nullptr, progress.get());
+  if (options_.progress) progress = std::make_unique<Progress>("compare", samples_a->size() + samples_b.size());
+  const OneSidedDistance ab = one_sided(*samples_a, tree_b, progress.get());
+  const OneSidedDistance ba = one_sided(samples_b, *tree_, progress.get());
   if (progress) progress->finish();
   return combine(ab, ba, diagonal_);
 }

@@ -30,6 +30,7 @@ class FaceRandom {
     state_ += kGamma;
     return static_cast<double>(mix64(state_) >> 11) * 0x1.0p-53;
   }
+  void skip(uint64_t draws) { state_ += draws * kGamma; }  // as `draws` calls of uniform()
 
  private:
   uint64_t state_;
@@ -65,15 +66,6 @@ size_t diffuse_counts(const std::vector<double>& measure, double density, std::v
   return total;
 }
 
-std::vector<size_t> offsets_of(const std::vector<uint32_t>& counts, size_t start) {
-  std::vector<size_t> offsets(counts.size());
-  size_t at = start;
-  for (size_t i = 0; i < counts.size(); ++i) {
-    offsets[i] = at;
-    at += counts[i];
-  }
-  return offsets;
-}
 
 }  // namespace
 
@@ -85,20 +77,18 @@ double surface_area(const Mesh& mesh) {
   return area;
 }
 
-SurfaceSamples sample_surface(const Mesh& mesh, const SamplingOptions& options) {
+SamplePlan::SamplePlan(const Mesh& mesh, const SamplingOptions& options) : mesh_(mesh), seed_(options.seed) {
   check_indices(mesh);
   const std::vector<Vec3>& pos = mesh.positions;
   const std::vector<Tri>& tris = mesh.triangles;
   const size_t nf = tris.size();
-  SurfaceSamples out;
 
   // Referenced vertices, in index order.
-  std::vector<uint32_t> vertices;
   if (options.vertices) {
     std::vector<char> used(pos.size(), 0);
     for (const Tri& t : tris) used[t[0]] = used[t[1]] = used[t[2]] = 1;
     for (size_t v = 0; v < pos.size(); ++v)
-      if (used[v]) vertices.push_back(static_cast<uint32_t>(v));
+      if (used[v]) vertices_.push_back(static_cast<uint32_t>(v));
   }
 
   // Face areas; the total is summed in order, so it does not depend on the thread count.
@@ -107,84 +97,119 @@ SurfaceSamples sample_surface(const Mesh& mesh, const SamplingOptions& options) 
     for (size_t f = r.begin(); f != r.end(); ++f)
       areas[f] = triangle_area(pos[tris[f][0]], pos[tris[f][1]], pos[tris[f][2]]);
   });
-  for (double a : areas) out.area += a;
+  for (double a : areas) area += a;
 
   // Unique edges (vertex pairs), in sorted order.
-  std::vector<uint64_t> edges;
   if (options.edges) {
-    edges.reserve(3 * nf);
+    edges_.reserve(3 * nf);
     for (const Tri& t : tris)
       for (int k = 0; k < 3; ++k) {
         uint32_t a = t[k], b = t[(k + 1) % 3];
         if (a == b) continue;
         if (a > b) std::swap(a, b);
-        edges.push_back(static_cast<uint64_t>(a) << 32 | b);
+        edges_.push_back(static_cast<uint64_t>(a) << 32 | b);
       }
-    tbb::parallel_sort(edges.begin(), edges.end());
-    edges.erase(std::unique(edges.begin(), edges.end()), edges.end());
+    tbb::parallel_sort(edges_.begin(), edges_.end());
+    edges_.erase(std::unique(edges_.begin(), edges_.end()), edges_.end());
+    edges_.shrink_to_fit();
   }
-  std::vector<double> lengths(edges.size());
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, edges.size(), kGrain), [&](const tbb::blocked_range<size_t>& r) {
+  std::vector<double> lengths(edges_.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, edges_.size(), kGrain), [&](const tbb::blocked_range<size_t>& r) {
     for (size_t e = r.begin(); e != r.end(); ++e)
-      lengths[e] = norm(pos[edges[e] & 0xffffffffu] - pos[edges[e] >> 32]);
+      lengths[e] = norm(pos[edges_[e] & 0xffffffffu] - pos[edges_[e] >> 32]);
   });
-  for (double l : lengths) out.edge_length += l;
+  for (double l : lengths) edge_length += l;
 
   // Split the budget (see SampleBudget).
   const double n = static_cast<double>(options.samples);
-  std::vector<uint32_t> edge_counts, face_counts;
-  out.vertex_samples = vertices.size();
+  vertex_samples = vertices_.size();
   if (options.budget == SampleBudget::PerKind) {
-    if (out.edge_length > 0) out.edge_samples = diffuse_counts(lengths, n / out.edge_length, edge_counts);
-    if (options.faces && out.area > 0) out.face_samples = diffuse_counts(areas, n / out.area, face_counts);
+    if (edge_length > 0) edge_samples = diffuse_counts(lengths, n / edge_length, edge_counts_);
+    if (options.faces && area > 0) face_samples = diffuse_counts(areas, n / area, face_counts_);
   } else {
-    double left = n - static_cast<double>(out.vertex_samples);
-    if (left > 0 && options.edges && out.edge_length > 0) {
+    double left = n - static_cast<double>(vertex_samples);
+    if (left > 0 && options.edges && edge_length > 0) {
       // Metro's rule, except that the edges never take more than what is left (Metro would exceed the budget when
       // it is below a few samples per face).
-      const double per_length = std::min(options.faces && out.area > 0 ? std::sqrt(left / out.area) : HUGE_VAL,
-                                         left / out.edge_length);
-      out.edge_samples = diffuse_counts(lengths, per_length, edge_counts);
-      left -= static_cast<double>(out.edge_samples);
+      const double per_length =
+          std::min(options.faces && area > 0 ? std::sqrt(left / area) : HUGE_VAL, left / edge_length);
+      edge_samples = diffuse_counts(lengths, per_length, edge_counts_);
+      left -= static_cast<double>(edge_samples);
     }
-    if (left > 0 && options.faces && out.area > 0) out.face_samples = diffuse_counts(areas, left / out.area, face_counts);
+    if (left > 0 && options.faces && area > 0) face_samples = diffuse_counts(areas, left / area, face_counts_);
   }
-  if (edge_counts.empty()) edge_counts.assign(edges.size(), 0);
-  if (face_counts.empty()) face_counts.assign(nf, 0);
+  if (edge_counts_.empty()) edge_counts_.assign(edges_.size(), 0);
+  if (face_counts_.empty()) face_counts_.assign(nf, 0);
 
-  out.points.resize(out.vertex_samples + out.edge_samples + out.face_samples);
-  for (size_t i = 0; i < vertices.size(); ++i) out.points[i] = pos[vertices[i]];
+  // Where each chunk starts: one pass over the elements in sample order.
+  starts_.resize(chunks());
+  size_t at = 0, element = 0;  // samples before `element`
+  auto count_of = [&](size_t e) -> size_t {
+    if (e < vertices_.size()) return 1;
+    e -= vertices_.size();
+    return e < edges_.size() ? edge_counts_[e] : face_counts_[e - edges_.size()];
+  };
+  for (size_t c = 0; c < starts_.size(); ++c) {
+    const size_t first = c * kSampleChunk;
+    while (at + count_of(element) <= first) at += count_of(element++);
+    starts_[c] = {element, static_cast<uint32_t>(first - at)};
+  }
+}
 
-  // Edge samples: evenly spaced, endpoints excluded (they are vertex samples).
-  const std::vector<size_t> edge_at = offsets_of(edge_counts, out.vertex_samples);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, edges.size(), kGrain), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t e = r.begin(); e != r.end(); ++e) {
-      const uint32_t c = edge_counts[e];
-      if (c == 0) continue;
-      const Vec3& a = pos[edges[e] >> 32];
-      const Vec3& b = pos[edges[e] & 0xffffffffu];
-      const double step = 1.0 / (static_cast<double>(c) + 1.0);
-      for (uint32_t i = 0; i < c; ++i) out.points[edge_at[e] + i] = lerp(a, b, step * (i + 1));
-    }
-  });
-
-  // Face samples: uniform in the triangle (parallelogram folding of two uniform numbers).
-  const std::vector<size_t> face_at = offsets_of(face_counts, out.vertex_samples + out.edge_samples);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, nf, kGrain), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t f = r.begin(); f != r.end(); ++f) {
-      const uint32_t c = face_counts[f];
-      if (c == 0) continue;
-      const Vec3& a = pos[tris[f][0]];
-      const Vec3 ab = pos[tris[f][1]] - a, ac = pos[tris[f][2]] - a;
-      FaceRandom rng(options.seed, f);
-      for (uint32_t i = 0; i < c; ++i) {
+void SamplePlan::chunk(size_t c, std::vector<Vec3>& out) const {
+  const size_t first = c * kSampleChunk;
+  out.resize(std::min(size(), first + kSampleChunk) - first);
+  const std::vector<Vec3>& pos = mesh_.positions;
+  const size_t nv = vertices_.size(), ne = edges_.size();
+  size_t element = starts_[c].element;
+  uint32_t skip = starts_[c].skip;
+  for (size_t k = 0; k < out.size(); ++element, skip = 0) {
+    if (element < nv) {
+      out[k++] = pos[vertices_[element]];
+    } else if (element < nv + ne) {
+      // Edge samples: evenly spaced, endpoints excluded (they are vertex samples).
+      const size_t e = element - nv;
+      const uint32_t n = edge_counts_[e];
+      const Vec3& a = pos[edges_[e] >> 32];
+      const Vec3& b = pos[edges_[e] & 0xffffffffu];
+      const double step = 1.0 / (static_cast<double>(n) + 1.0);
+      for (uint32_t i = skip; i < n && k < out.size(); ++i) out[k++] = lerp(a, b, step * (i + 1));
+    } else {
+      // Face samples: uniform in the triangle (parallelogram folding of two uniform numbers).
+      const size_t f = element - nv - ne;
+      const uint32_t n = face_counts_[f];
+      if (n == 0) continue;
+      const Tri& t = mesh_.triangles[f];
+      const Vec3& a = pos[t[0]];
+      const Vec3 ab = pos[t[1]] - a, ac = pos[t[2]] - a;
+      FaceRandom rng(seed_, f);
+      rng.skip(2 * uint64_t{skip});
+      for (uint32_t i = skip; i < n && k < out.size(); ++i) {
         double u = rng.uniform(), v = rng.uniform();
         if (u + v > 1) {
           u = 1 - u;
           v = 1 - v;
         }
-        out.points[face_at[f] + i] = a + ab * u + ac * v;
+        out[k++] = a + ab * u + ac * v;
       }
+    }
+  }
+}
+
+SurfaceSamples sample_surface(const Mesh& mesh, const SamplingOptions& options) {
+  const SamplePlan plan(mesh, options);
+  SurfaceSamples out;
+  out.vertex_samples = plan.vertex_samples;
+  out.edge_samples = plan.edge_samples;
+  out.face_samples = plan.face_samples;
+  out.area = plan.area;
+  out.edge_length = plan.edge_length;
+  out.points.resize(plan.size());
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, plan.chunks(), 1), [&](const tbb::blocked_range<size_t>& r) {
+    std::vector<Vec3> chunk;
+    for (size_t c = r.begin(); c != r.end(); ++c) {
+      plan.chunk(c, chunk);
+      std::copy(chunk.begin(), chunk.end(), out.points.begin() + static_cast<long>(c * SamplePlan::kSampleChunk));
     }
   });
   return out;

@@ -120,6 +120,30 @@ TEST(SurfaceSampler, DeterministicAndIndependentOfThreads) {
   EXPECT_TRUE(std::equal(a.points.begin(), a.points.begin() + static_cast<long>(fixed), c.points.begin()));
 }
 
+// SamplePlan computes each chunk of 1024 samples on its own, starting inside an edge's or a face's run: with the
+// PerKind budget the edge and face counts do not depend on the vertex samples, so dropping the 642 vertex samples
+// moves every chunk boundary to another place inside those runs, and the samples must not change.
+TEST(SurfaceSampler, ChunksStartingInsideAnEdgeOrAFaceGiveTheSameSamples) {
+  const Mesh sphere = test::icosphere(3);  // 642 vertices
+  SamplingOptions o;
+  o.samples = 9000;
+  o.budget = SampleBudget::PerKind;
+  o.seed = 7;
+  const SurfaceSamples with = sample_surface(sphere, o);
+  o.vertices = false;
+  const SurfaceSamples without = sample_surface(sphere, o);
+  ASSERT_EQ(with.vertex_samples, 642u);
+  ASSERT_GT(without.points.size(), 8 * SamplePlan::kSampleChunk);
+  ASSERT_EQ(with.points.size(), without.points.size() + 642);
+  EXPECT_TRUE(std::equal(without.points.begin(), without.points.end(), with.points.begin() + 642));
+  // The plan's chunks are the stored samples.
+  const SamplePlan plan(sphere, o);
+  std::vector<Vec3> chunk;
+  plan.chunk(3, chunk);
+  ASSERT_EQ(chunk.size(), SamplePlan::kSampleChunk);
+  EXPECT_TRUE(std::equal(chunk.begin(), chunk.end(), without.points.begin() + 3 * SamplePlan::kSampleChunk));
+}
+
 TEST(SurfaceSampler, BadIndexThrows) {
   Mesh m;
   m.positions = {{0, 0, 0}};

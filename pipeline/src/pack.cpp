@@ -56,6 +56,7 @@ PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bit
   auto t0 = std::chrono::steady_clock::now();
   remesh::RemeshOptions ro;
   ro.layout = &ctx.layout;
+  ro.input_tree = &ctx.full.tree();  // the Metro reference's tree of the same mesh (source)
   ro.grid_tolerance = ctx.plan.grid_tolerance;
   ro.accept_error = ctx.plan.accept_error;
   ro.first_exponent = ctx.plan.first_exponent;
@@ -356,14 +357,14 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
   MetroOptions mo;
   mo.samples = options.metro_samples;  // 0: Metro's ten per face, as `prm compare` measures
   std::unique_ptr<MetroReference> own_reference;
-  if (repaired || !input_reference) own_reference = std::make_unique<MetroReference>(source, mo);
+  if (repaired || !input_reference) own_reference = std::make_unique<MetroReference>(&source, mo);  // borrowed: source outlives the search
   const MetroReference& reference = own_reference ? *own_reference : *input_reference;
   // The search's own, sparser samples (only where they are fewer than the report's).
   MetroOptions so = mo;
   so.samples_per_face = plan.search_samples_per_face;
   const bool sparse = options.metro_samples == 0 && searched && plan.search_samples_per_face < 10;
   std::unique_ptr<MetroReference> sparse_reference;
-  if (sparse) sparse_reference = std::make_unique<MetroReference>(source, so);
+  if (sparse) sparse_reference = std::make_unique<MetroReference>(reference, so);  // one mesh and tree for both
   remesh::ReliefOptions relief_options;
   relief_options.tau = options.tau;
   relief_options.parallel = options.parallel;
@@ -524,7 +525,7 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
   MetroOptions mo;
   mo.samples = options.metro_samples;
   std::unique_ptr<MetroReference> input_reference;
-  if (mode != PackMode::prm) input_reference = std::make_unique<MetroReference>(input, mo);
+  if (mode != PackMode::prm) input_reference = std::make_unique<MetroReference>(&input, mo);  // borrowed
 
   // The general candidate: the input as it comes (with its boundaries), cheap, made first.
   PackResult::Candidate general;

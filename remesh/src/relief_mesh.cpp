@@ -139,7 +139,7 @@ size_t make_generic(Mesh& refined, const std::vector<int32_t>& face_relief, cons
 }
 
 void prepare_view(ReliefMeshView& view) {
-  view.opposite = face_adjacency(*view.mesh);
+  if (view.opposite.empty()) view.opposite = face_adjacency(*view.mesh);
   for (int k = 0; k < 3; ++k) {
     auto& fam = view.family[static_cast<size_t>(k)];
     fam.resize(view.mesh->positions.size());

@@ -42,7 +42,7 @@ size_t make_generic(Mesh& refined, const std::vector<int32_t>& face_relief, cons
                     const std::vector<std::array<int32_t, 3>>& adjacency, const QuantFrame& frame,
                     const HexLattice& lattice);
 
-// Fills view.opposite and view.family.
+// Fills view.opposite (unless the caller has) and view.family.
 void prepare_view(ReliefMeshView& view);
 
 }  // namespace prm::remesh

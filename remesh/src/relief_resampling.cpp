@@ -15,6 +15,9 @@ constexpr double kMinArea = 1e-12;
 class Resampler {
  public:
   Resampler(const SlicedRelief& s, int axis) : s_(s), sign_(axis_sign(axis)) {
+    // Reserved, not grown by doubling (a disk's E = V + F - 1; holes add one each): the sliced relief is the
+    // largest structure of a large input's remesh.
+    mesh_.reserve(s.vertices.size(), s.vertices.size() + s.faces.size(), s.faces.size());
     for (const SliceVertex& v : s.vertices) mesh_.add_vertex(OMesh::Point(v.position[0], v.position[1], v.position[2]));
     for (const auto& f : s.faces) {
       const auto fh = mesh_.add_face(OMesh::VertexHandle(f[0]), OMesh::VertexHandle(f[1]), OMesh::VertexHandle(f[2]));

@@ -281,6 +281,9 @@ SlicedRelief slice_relief(const ReliefMeshView& view, const std::vector<int32_t>
       for (size_t q = 1; q + 1 < poly.size(); ++q) out.faces.push_back({poly[0], poly[q], poly[q + 1]});
     }
   }
+  // Grown by doubling: the spare capacity would stay through the relief's resampling.
+  out.vertices.shrink_to_fit();
+  out.faces.shrink_to_fit();
   return out;
 }
 

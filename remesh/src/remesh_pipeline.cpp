@@ -79,6 +79,7 @@ RemeshResult remesh(const Mesh& input, const RemeshOptions& options, const Error
   ro.parallel = options.parallel;
   ro.fit_heights = options.fit_heights;
   ro.error_flip_weight = options.error_flip_weight;
+  ro.input_tree = options.input_tree;
   const double diagonal = bbox_diagonal(input);
   ro.max_deviation = (options.refine_error > 0 ? options.refine_error : options.max_error) * diagonal;
   const int64_t coarsest = int64_t{1} << options.bits;  // a grid wider than the bounding box

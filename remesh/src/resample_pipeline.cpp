@@ -3,6 +3,8 @@
 #include <map>
 #include <tbb/parallel_for.h>
 
+#include <memory>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -75,7 +77,10 @@ PrmMesh resample_and_merge(const LayoutInput& layout, const ResampleOptions& opt
   ResampleStats& st = prm.stats;
   st.reliefs = layout.relief_axis->size();
 
-  Mesh refined = *layout.refined;
+  // A copy to nudge (make_generic): positions and triangles only, not the layout's properties.
+  Mesh refined;
+  refined.positions = layout.refined->positions;
+  refined.triangles = layout.refined->triangles;
   const auto& face_relief = *layout.face_relief;
   if (face_relief.size() != refined.triangles.size()) throw std::invalid_argument("face_relief has the wrong size");
   for (int32_t r : face_relief)
@@ -83,10 +88,10 @@ PrmMesh resample_and_merge(const LayoutInput& layout, const ResampleOptions& opt
 
   // An open edge (no face across) is part of the mesh boundary: a seam with no neighbour, which the slicing keeps
   // (its vertices are relief-boundary vertices), the merge leaves open and the seam passes never move.
-  const auto adjacency = face_adjacency(refined);
-  st.generic_moves = make_generic(refined, face_relief, prm.relief_axis, adjacency, prm.frame, prm.lattice);
-
   ReliefMeshView view;
+  view.opposite = face_adjacency(refined);  // the nudge moves no vertex to another face: computed once for both
+  st.generic_moves = make_generic(refined, face_relief, prm.relief_axis, view.opposite, prm.frame, prm.lattice);
+
   view.mesh = &refined;
   view.face_relief = &face_relief;
   view.relief_axis = &prm.relief_axis;
@@ -136,7 +141,10 @@ PrmMesh resample_and_merge(const LayoutInput& layout, const ResampleOptions& opt
   so.max_normal_angle_deg = options.max_normal_angle_deg;
   so.grid_length = static_cast<double>(prm.lattice.A) * prm.frame.step;
   so.error_flip_weight = options.error_flip_weight;
-  const AabbTree tree(input);
+  // The input's tree: the caller's (pack's Metro reference holds one of the same mesh), or one built here.
+  std::unique_ptr<AabbTree> own_tree;
+  if (!options.input_tree) own_tree = std::make_unique<AabbTree>(input);
+  const AabbTree& tree = options.input_tree ? *options.input_tree : *own_tree;
   const SeamStats ss = optimize_seams(merged, input, normals, tree, so);
   st.loops_broken = ss.loops_broken;
   st.seam_collapses = ss.boundary_collapses;

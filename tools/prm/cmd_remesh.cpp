@@ -1,6 +1,7 @@
 // prm remesh IN -o OUT.ply (--grid G | --grid-fraction F | --target-error E) [--tau T] [--bits B] [--json]:
 // the piecewise regular mesh of paper §2, with its lattice labels (docs/ARCHITECTURE.md "The PRM file").
 #include <chrono>
+#include <optional>
 #include <cstdio>
 #include <nlohmann/json.hpp>
 
@@ -63,9 +64,17 @@ void add_remesh_command(CLI::App& root) {
     ro.target_error = opt->target;
     MetroOptions mo;
     mo.samples = opt->samples;
-    const MetroReference reference(input, mo);
+    // A fixed grid is measured once, after the resampling: the reference (the input's AABB tree, the input borrowed) is
+    // made then, not held through the resampling's peak of memory. A search measures every round and lends the
+    // reference's tree to the remesher.
+    std::optional<MetroReference> held;
+    if (opt->target > 0) {
+      held.emplace(&input, mo);
+      ro.input_tree = &held->tree();
+    }
     auto error = [&](const remesh::PrmMesh& candidate) {
-      const DistanceReport d = reference.compare(candidate.mesh);
+      if (!held) held.emplace(&input, mo);
+      const DistanceReport d = held->compare(candidate.mesh);
       return remesh::ErrorEstimate{d.rel(d.rms), d.rel(d.max)};
     };
     remesh::RemeshResult res;
@@ -75,6 +84,8 @@ void add_remesh_command(CLI::App& root) {
       throw Failure(e.what());
     }
     write_mesh(res.prm.mesh, opt->output, WriteOptions{MeshFormat::Ply, true, true, true});
+    if (!held) held.emplace(&input, mo);  // (remesh() measures every grid it makes: not reached)
+    const MetroReference& reference = *held;
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const auto& s = res.prm.stats;
     const double regular = s.faces ? static_cast<double>(s.regular_faces) / s.faces : 0;

@@ -96,21 +96,27 @@ double bbox_diagonal(const Mesh& mesh);
 class MetroReference {
  public:
   explicit MetroReference(Mesh reference, const MetroOptions& options = {});
+  // Borrows the mesh instead of copying it (48 bytes a vertex): *reference must outlive this object, unchanged.
+  explicit MetroReference(const Mesh* reference, const MetroOptions& options = {});
+  // Another sampling of the same reference: shares its mesh and tree (`prm pack`'s sparse search samples and its
+  // report's full ones, one copy of a large input instead of two).
+  MetroReference(const MetroReference& shared, const MetroOptions& options);
   DistanceReport compare(const Mesh& candidate) const;  // A = reference, B = candidate
   double diagonal() const { return diagonal_; }
-  const Mesh& mesh() const { return mesh_; }
-  const AabbTree& tree() const { return tree_; }
+  const Mesh& mesh() const { return *mesh_; }
+  const AabbTree& tree() const { return *tree_; }
   const MetroOptions& options() const { return options_; }
 
  private:
-  std::shared_ptr<const SurfaceSamples> samples_for(size_t count) const;
+  // The samples are not stored (SamplePlan): at Metro's ten per face they took 24 bytes each, 480 a vertex.
+  std::shared_ptr<const SamplePlan> samples_for(size_t count) const;
 
-  Mesh mesh_;
+  std::shared_ptr<const Mesh> mesh_;
   MetroOptions options_;
-  AabbTree tree_;
+  std::shared_ptr<const AabbTree> tree_;
   double diagonal_ = 0;
   mutable std::mutex mutex_;
-  mutable std::shared_ptr<const SurfaceSamples> samples_;
+  mutable std::shared_ptr<const SamplePlan> samples_;
   mutable size_t samples_count_ = 0;
 };
 

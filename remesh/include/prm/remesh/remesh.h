@@ -51,6 +51,8 @@ struct RemeshOptions {
   // The relief layout of the input (build_reliefs(input, reliefs)), when the caller built it already: a search over
   // several bit depths or step scales builds it once. Null: built here.
   const ReliefLayout* layout = nullptr;
+  // The AABB tree of the input, when the caller has one (ResampleOptions::input_tree). Null: built every round.
+  const AabbTree* input_tree = nullptr;
   // The most vertices a grid may give (estimated from the input's area and the lattice's cell): 0 for
   // max(kMinVertexBudget, kVertexBudgetPerInputVertex x the input's vertices). A fixed grid finer than that is
   // refused, and the search does not go finer (VertexBudgetExceeded when the target needs it).
