@@ -70,10 +70,11 @@ void add_pack_command(CLI::App& root) {
   cmd->add_option("--mode", opt->mode,
                   "prm: remesh and code the piecewise regular mesh; general: code the input itself through the general "
                   "path (format 1.0, or 1.3 with the seam context, as `prm encode`) at the smallest bit depth (8..20) "
-                  "that meets --target-error (exit 2 if it refuses the input: non-manifold; 3 if no bit depth meets the "
+                  "that meets --target-error and --max-error (exit 2 if it refuses the input: non-manifold; 3 if no bit depth meets the "
                   "target without collapsing a triangle); auto "
                   "(default): make both and keep the smaller stream (prm when the general path refuses the input, "
-                  "general when no piecewise regular mesh meets the target; prm without --target-error). The report "
+                  "general when no piecewise regular mesh meets the target; prm without --target-error or --max-error, and "
+                  "with --fill-holes on an open input, whose holes the general path would keep). The report "
                   "says which and why")
       ->check(CLI::IsMember({"prm", "general", "auto"}));
   cmd->add_option("--samples", opt->samples, "Metro samples per surface for the target-error search (default 0: Metro's ten per face)");
