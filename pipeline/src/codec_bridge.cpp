@@ -55,8 +55,8 @@ codec::Result<std::vector<uint8_t>> encode_prm_mesh(const remesh::PrmMesh& prm, 
 codec::Result<std::vector<uint8_t>> encode_any_mesh(const Mesh& mesh, int bits, codec::EncodeReport* report,
                                                     bool* was_prm, int max_minor) {
   if (was_prm) *was_prm = false;
-  const int seam = max_minor >= codec::kFormatMinorSeam ? -1 : 0;  // -1: the encoder's choice
   if (has_prm_frame(mesh)) {
+    const int seam = max_minor >= codec::kFormatMinorSeam ? -1 : 0;  // -1: the encoder's choice
     const remesh::PrmMesh prm = remesh::load_prm_labels(mesh);  // throws InputError on inconsistent labels
     if (was_prm) *was_prm = true;
     codec::PrmOptions po;
@@ -64,10 +64,15 @@ codec::Result<std::vector<uint8_t>> encode_any_mesh(const Mesh& mesh, int bits, 
     po.patch_contexts = max_minor >= codec::kFormatMinorPatchContexts;
     return encode_prm_mesh(prm, report, po);
   }
+  return encode_general_mesh(mesh, bits, report, max_minor);
+}
+
+codec::Result<std::vector<uint8_t>> encode_general_mesh(const Mesh& mesh, int bits, codec::EncodeReport* report,
+                                                        int max_minor) {
   const std::vector<uint32_t> tris = flat_triangles(mesh);
   codec::EncodeOptions eo;
   eo.position_bits = bits;
-  eo.seam_context = seam;
+  eo.seam_context = max_minor >= codec::kFormatMinorSeam ? -1 : 0;  // -1: the encoder's choice
   return codec::encode(mesh.positions.empty() ? nullptr : mesh.positions[0].data(), mesh.positions.size(),
                        tris.data(), mesh.triangles.size(), eo, report);
 }

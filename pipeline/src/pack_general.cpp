@@ -13,18 +13,8 @@ namespace {
 
 // One bit depth: encode (spec §6, §10), decode, measure against the input.
 GeneralPack encode_at(const Mesh& input, const MetroReference& reference, int bits, int max_minor) {
-  std::vector<double> xyz;
-  xyz.reserve(3 * input.positions.size());
-  for (const Vec3& p : input.positions) xyz.insert(xyz.end(), {p[0], p[1], p[2]});
-  std::vector<uint32_t> triangles;
-  triangles.reserve(3 * input.triangles.size());
-  for (const Tri& t : input.triangles) triangles.insert(triangles.end(), {t[0], t[1], t[2]});
-  codec::EncodeOptions eo;
-  eo.position_bits = bits;
-  eo.seam_context = max_minor >= codec::kFormatMinorSeam ? -1 : 0;
   GeneralPack out;
-  auto encoded = codec::encode(xyz.data(), input.positions.size(), triangles.data(), input.triangles.size(), eo,
-                               &out.report);
+  auto encoded = encode_general_mesh(input, bits, &out.report, max_minor);
   if (!encoded.ok())
     throw InputError("the general path refuses the input: " + encoded.status.message + " (spec §" +
                      encoded.status.spec_section + ")");

@@ -24,6 +24,11 @@ codec::Result<std::vector<uint8_t>> encode_any_mesh(const Mesh& mesh, int bits, 
                                                     bool* was_prm = nullptr,
                                                     int max_minor = codec::kFormatMinorPatchContexts);
 
+// Encodes a mesh through the general path (spec §6, §10) at `bits` bits, whatever it carries (encode_any_mesh's
+// branch for anything that is not a PRM; pack's general candidate). `max_minor` as above (below 3: no seam context).
+codec::Result<std::vector<uint8_t>> encode_general_mesh(const Mesh& mesh, int bits, codec::EncodeReport* report,
+                                                        int max_minor = codec::kFormatMinorPatchContexts);
+
 // A decoded stream as a prm::Mesh (dequantized double positions).
 Mesh to_mesh(const codec::DecodedMesh& decoded);
 
