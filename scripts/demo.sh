@@ -47,13 +47,31 @@ echo "== 4. the decoded mesh against the original (Metro-style distances)"
 $prm compare "$mesh" "$out/$name.decoded.ply"
 
 echo
-echo "== 5. against Draco (edgebreaker, 12-bit positions, compression level 10) on the original"
+echo "== 5. against Draco (edgebreaker, compression level 10) on the original: 12-bit positions, and at matched error"
 if command -v draco_encoder >/dev/null; then
   draco_encoder -i "$mesh" -o "$out/$name.drc" -qp 12 -cl 10 -qt -1 -qn -1 -qg -1 >/dev/null
   ours=$(stat -c %s "$out/$name.prm")
   theirs=$(stat -c %s "$out/$name.drc")
   echo "  PRM stream:   $ours bytes"
   echo "  Draco stream: $theirs bytes  (PRM is $(awk "BEGIN{printf \"%.2f\", $ours/$theirs}") of Draco)"
+  # At matched error: the smallest -qp (6..16) whose decoded RMS distance to the original is at most PRM's.
+  if command -v draco_decoder >/dev/null; then
+    rms() { $prm compare --json "$mesh" "$1" | python3 -c 'import json,sys; print(json.load(sys.stdin)["symmetric"]["rms_rel"])'; }
+    draco_at() {
+      draco_encoder -i "$mesh" -o "$out/$name.qp.drc" -qp "$1" -cl 10 -qt -1 -qn -1 -qg -1 >/dev/null
+      draco_decoder -i "$out/$name.qp.drc" -o "$out/$name.qp.ply" >/dev/null
+    }
+    ours_rms=$(rms "$out/$name.decoded.ply")
+    lo=6; hi=16
+    while [ $lo -lt $hi ]; do
+      mid=$(( (lo + hi) / 2 ))
+      draco_at $mid
+      if python3 -c "import sys; sys.exit(0 if $(rms "$out/$name.qp.ply") <= $ours_rms else 1)"; then hi=$mid; else lo=$((mid + 1)); fi
+    done
+    draco_at $lo
+    matched=$(stat -c %s "$out/$name.qp.drc")
+    echo "  at matched error (RMS $ours_rms of the diagonal): Draco -qp $lo, RMS $(rms "$out/$name.qp.ply"), $matched bytes  (PRM is $(awk "BEGIN{printf \"%.2f\", $ours/$matched}") of Draco)"
+  fi
 fi
 echo
 echo "== 6. the stream as a compressed glTF (PRM_mesh_compression), checked by the Khronos glTF-Validator"
