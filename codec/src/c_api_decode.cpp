@@ -1,8 +1,11 @@
 // The decoding half of the C API (prm/prm.h) over prm/codec.h: version, status names, inspect, decode into caller or
 // library buffers. Nothing throws out of here.
+#include <cstddef>
 #include <cstdlib>
 #include <cstring>
 #include <new>
+#include <type_traits>
+#include <vector>
 
 #include "c_api_shared.h"
 
@@ -32,11 +35,21 @@ void copy_frame(const Frame& f, prm_frame& out) {
   out.step = f.step;
 }
 
+// prm_decode_mesh's result: the public struct, and the decoder's own vectors its pointers point into (no copy of
+// the positions, quantized coordinates and indices). prm_mesh_free gets back here from the public struct, its first
+// member (a standard-layout class: the two are pointer-interconvertible).
+struct OwnedMesh {
+  prm_mesh mesh;
+  DecodedMesh decoded;
+};
+static_assert(std::is_standard_layout<OwnedMesh>::value && offsetof(OwnedMesh, mesh) == 0,
+              "prm_mesh_free casts a prm_mesh* back to its OwnedMesh");
+
+// A non-null pointer for an empty vector too (the struct's contract).
 template <typename T>
-T* copy_out(const std::vector<T>& v) {
-  T* p = static_cast<T*>(std::malloc(v.empty() ? 1 : v.size() * sizeof(T)));
-  if (p && !v.empty()) std::memcpy(p, v.data(), v.size() * sizeof(T));
-  return p;
+T* data_or_empty(std::vector<T>& v) {
+  static T empty{};
+  return v.empty() ? &empty : v.data();
 }
 
 }  // namespace
@@ -115,20 +128,19 @@ prm_status prm_decode_mesh(const uint8_t* data, size_t size, const prm_decode_li
   *mesh = nullptr;
   if (!data) return set_error(error, PRM_ERROR_INVALID_ARGUMENT, "", 0, "prm_decode_mesh: data is NULL");
   try {
-    const Result<DecodedMesh> r = decode(data, size, decode_options(limits, PositionOutput::float32));
+    Result<DecodedMesh> r = decode(data, size, decode_options(limits, PositionOutput::float32));
     if (!r.ok()) return set_error(error, r.status);
-    prm_mesh* m = static_cast<prm_mesh*>(std::calloc(1, sizeof(prm_mesh)));
-    if (!m) return set_error(error, PRM_ERROR_OUT_OF_MEMORY, "4", 0, "out of memory");
-    m->vertices = r.value.num_vertices();
-    m->triangles = r.value.num_triangles();
-    copy_frame(r.value.frame, m->frame);
-    m->positions = copy_out(r.value.positions_f32);
-    m->quantized = copy_out(r.value.quantized);
-    m->indices = copy_out(r.value.triangles);
-    if (!m->positions || !m->quantized || !m->indices) {
-      prm_mesh_free(m);
-      return set_error(error, PRM_ERROR_OUT_OF_MEMORY, "4", 0, "out of memory");
-    }
+    OwnedMesh* owned = new (std::nothrow) OwnedMesh{};
+    if (!owned) return set_error(error, PRM_ERROR_OUT_OF_MEMORY, "4", 0, "out of memory");
+    owned->decoded = std::move(r.value);  // the vectors move: the mesh's arrays are the decoder's own
+    DecodedMesh& d = owned->decoded;
+    prm_mesh* m = &owned->mesh;
+    m->vertices = d.num_vertices();
+    m->triangles = d.num_triangles();
+    copy_frame(d.frame, m->frame);
+    m->positions = data_or_empty(d.positions_f32);
+    m->quantized = data_or_empty(d.quantized);
+    m->indices = data_or_empty(d.triangles);
     *mesh = m;
     return set_ok(error);
   } catch (const std::bad_alloc&) {
@@ -140,10 +152,7 @@ prm_status prm_decode_mesh(const uint8_t* data, size_t size, const prm_decode_li
 
 void prm_mesh_free(prm_mesh* mesh) {
   if (!mesh) return;
-  std::free(mesh->positions);
-  std::free(mesh->quantized);
-  std::free(mesh->indices);
-  std::free(mesh);
+  delete reinterpret_cast<OwnedMesh*>(mesh);  // only prm_decode_mesh makes a prm_mesh
 }
 
 void prm_free(void* data) { std::free(data); }

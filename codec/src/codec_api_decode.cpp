@@ -98,14 +98,25 @@ Result<DecodedMesh> decode(const uint8_t* data, size_t size, const DecodeOptions
       }
     }
     // §10.5 Output positions: o + q * s in double, rounded to float for float32 output.
+    const size_t nq = out.quantized.size();
+    const uint32_t* src = out.quantized.data();
+    const double o0 = h.frame.origin[0], o1 = h.frame.origin[1], o2 = h.frame.origin[2], step = h.frame.step;
     if (options.positions == PositionOutput::float32) {
-      out.positions_f32.resize(out.quantized.size());
-      for (size_t i = 0; i < out.quantized.size(); ++i)
-        out.positions_f32[i] = static_cast<float>(dequantize(out.quantized[i], h.frame.origin[i % 3], h.frame.step));
+      out.positions_f32.resize(nq);
+      float* dst = out.positions_f32.data();
+      for (size_t i = 0; i < nq; i += 3) {
+        dst[i] = static_cast<float>(dequantize(src[i], o0, step));
+        dst[i + 1] = static_cast<float>(dequantize(src[i + 1], o1, step));
+        dst[i + 2] = static_cast<float>(dequantize(src[i + 2], o2, step));
+      }
     } else if (options.positions == PositionOutput::float64) {
-      out.positions_f64.resize(out.quantized.size());
-      for (size_t i = 0; i < out.quantized.size(); ++i)
-        out.positions_f64[i] = dequantize(out.quantized[i], h.frame.origin[i % 3], h.frame.step);
+      out.positions_f64.resize(nq);
+      double* dst = out.positions_f64.data();
+      for (size_t i = 0; i < nq; i += 3) {
+        dst[i] = dequantize(src[i], o0, step);
+        dst[i + 1] = dequantize(src[i + 1], o1, step);
+        dst[i + 2] = dequantize(src[i + 2], o2, step);
+      }
     }
   } catch (const std::bad_alloc&) {
     res.status = make_status(Error::out_of_memory, "4", 0, "out of memory");

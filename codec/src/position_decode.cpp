@@ -19,8 +19,11 @@ inline bool decode_residual(RangeDecoder& rc, ResidualModels& m, int axis, int c
   RiceState& rice = m.rice[axis][ctx];
   const int k = rice.k();
   BitModel* unary = m.unary[axis][ctx];
+  // The unary part: models 0 .. kUnaryModels - 2 one per position, then the last one up to the escape.
   uint32_t q = 0;
-  while (q < kUnaryEscape && rc.decode_bit(unary[q < kUnaryModels ? q : kUnaryModels - 1])) ++q;
+  while (q < kUnaryModels - 1 && rc.decode_bit(unary[q])) ++q;
+  if (q == kUnaryModels - 1)
+    while (q < kUnaryEscape && rc.decode_bit(unary[kUnaryModels - 1])) ++q;
   if (q == kUnaryEscape) q += rc.decode_direct(kEscapeBits);
   uint64_t u = q;
   if (k > 0) {

@@ -102,8 +102,8 @@ inline bool predict_position(const ClosedMesh& mesh, const std::vector<uint32_t>
   const uint32_t* cv = mesh.corner_vertex.data();
   const int32_t* opp = mesh.opp.data();
   int64_t sum[3] = {0, 0, 0}, lo_p[3] = {INT64_MAX, INT64_MAX, INT64_MAX}, hi_p[3] = {INT64_MIN, INT64_MIN, INT64_MIN};
-  int64_t side[3] = {0, 0, 0};
   int64_t n = 0;
+  uint32_t first[3] = {0, 0, 0};  // x, y, z of the first parallelogram: its side lengths are used when n = 1
   const uint32_t c0 = vertex_corner[v];
   uint32_t c = c0;
   // Along the walk, corner c's y is the previous corner's x: carry it and whether it is decoded.
@@ -118,12 +118,15 @@ inline bool predict_position(const ClosedMesh& mesh, const std::vector<uint32_t>
       if (z != v && order.done(z)) {
         const uint32_t *qx = q + 3 * size_t{x}, *qy = q + 3 * size_t{y}, *qz = q + 3 * size_t{z};
         for (int k = 0; k < 3; ++k) {
-          const int64_t a = qx[k], b = qy[k], d = qz[k];
-          const int64_t pk = a + b - d;
+          const int64_t pk = int64_t{qx[k]} + qy[k] - qz[k];
           sum[k] += pk;
           if (pk < lo_p[k]) lo_p[k] = pk;
           if (pk > hi_p[k]) hi_p[k] = pk;
-          if (n == 0) side[k] = (a > d ? a - d : d - a) + (b > d ? b - d : d - b);  // used when n = 1
+        }
+        if (n == 0) {
+          first[0] = x;
+          first[1] = y;
+          first[2] = z;
         }
         ++n;
       }
@@ -137,11 +140,14 @@ inline bool predict_position(const ClosedMesh& mesh, const std::vector<uint32_t>
   } while (c != c0);
   out.parallelograms = static_cast<int>(n);
   if (n > 0) {
+    const uint32_t *qx = q + 3 * size_t{first[0]}, *qy = q + 3 * size_t{first[1]}, *qz = q + 3 * size_t{first[2]};
     for (int k = 0; k < 3; ++k) {
       const int64_t p = rounded_mean(sum[k], n);
       out.p[k] = p < lo[k] ? lo[k] : p > hi[k] ? hi[k] : p;
       out.spread[k] = n > 1 ? hi_p[k] - lo_p[k] : 0;
-      out.scale[k] = n == 1 ? side[k] : 0;
+      // The side length |x - z| + |y - z| of the only parallelogram.
+      const int64_t a = qx[k], b = qy[k], d = qz[k];
+      out.scale[k] = n == 1 ? (a > d ? a - d : d - a) + (b > d ? b - d : d - b) : 0;
     }
     return true;
   }
@@ -222,6 +228,7 @@ constexpr int kResidualContexts = 24;
 constexpr uint32_t kRiceReset = 256;
 constexpr int kUnaryModels = 16;
 constexpr uint32_t kUnaryEscape = 20;  // after 20 ones, q - 20 follows in kEscapeBits direct bits
+static_assert(kUnaryModels - 1 < kUnaryEscape, "the unary part reaches its last model before the escape");
 constexpr int kEscapeBits = 21;
 constexpr int kMaxRice = 24;
 struct RiceState {
