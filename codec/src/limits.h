@@ -11,11 +11,6 @@ namespace prm::codec {
 // (modelled or direct bits); this follows from the probability floor kProbMin = 127 (adaptive_model.h).
 constexpr uint64_t kMaxDecisionsPerByte = 2880;
 
-// §4.5 The decoder's Spirale Reversi tables are reserved ahead for at most this many triangles per byte of CLERS
-// data (never more than the checked count): a bounded number of bytes per byte of the stream, as §4.5 allows. Real
-// streams code 5 to 30 triangles per byte, so most decode without the tables growing; beyond, they grow by doubling.
-constexpr uint64_t kReserveTrianglesPerByte = 16;
-
 // §4.1 Hard caps, whatever the caller allows: corner indices (3 per triangle) must fit in int32.
 constexpr uint64_t kHardMaxTriangles = uint64_t{1} << 29;
 constexpr uint64_t kHardMaxVertices = uint64_t{1} << 28;
