@@ -170,17 +170,27 @@ Status decode_symbols(const uint8_t* clers, size_t clers_size, uint64_t clers_of
       return make_status(Error::truncated, "5.5", clers_offset + clers_size, "the CLERS symbols end early");
     return make_status(Error::bad_connectivity, section, clers_offset + rc.consumed(), sr.error());
   };
+  // The next triangle (counting down) that is a component's first or a handle S: one comparison per triangle. The
+  // two never coincide: read_handles rejects a handle event on a component's first triangle (§6.3).
+  auto next_event = [&]() -> int64_t {
+    const int64_t c = comp > 0 ? int64_t{f.comp_first[comp - 1]} : -1;
+    const int64_t e = h > 0 ? int64_t{f.handles[h - 1].triangle} : -1;
+    return c > e ? c : e;
+  };
+  int64_t event = next_event();
   for (uint32_t i = nt; i-- > 0;) {
-    if (comp > 0 && f.comp_first[comp - 1] == i) {
-      if (!sr.close_component(i)) return fail("6.4.7");
-      --comp;
-      continue;
-    }
-    if (h > 0 && f.handles[h - 1].triangle == i) {
-      --h;
+    if (i == event) {
+      if (comp > 0 && f.comp_first[comp - 1] == i) {
+        if (!sr.close_component(i)) return fail("6.4.7");
+        --comp;
+        event = next_event();
+        continue;
+      }
+      --h;  // a handle S
       if (!sr.apply_handle(i, f.handles[h], f.comp_end[comp - 1])) return fail("6.4.6");
       prev2 = prev1;
       prev1 = kS;
+      event = next_event();
       continue;
     }
     // §6.5.1 Binarization.

@@ -1,14 +1,24 @@
-// node web/bench/cpu_ab.mjs ASSETS_DIR A.wasm B.wasm [BATCHES]: two builds of PRM's wasm decoder (e.g. a revision's
-// web/build.sh output against another's) in one node process, on make_assets.sh's assets, alternating batches of
-// 5 decodes after 30 warm-up decodes each, CPU time per decode: the fastest and the median batch of each (default 30
-// batches). Prints a Markdown table; fails if the two decode different vertex counts.
+// node web/bench/cpu_ab.mjs ASSETS_DIR A B [BATCHES]: two builds of PRM's wasm decoder in one node process, on
+// make_assets.sh's assets, alternating batches of 5 decodes after 30 warm-up decodes each, CPU time per decode: the
+// fastest and the median batch of each (default 30 batches). Prints a Markdown table; fails if the two decode
+// different vertex counts. A and B are each a .wasm file (loaded with this checkout's glue, so both must be
+// glue-compatible builds) or a web/ directory (its own src/prm_decoder.js, dist/prm_decoder_wasm.{js,wasm}: any two
+// revisions, e.g. `git worktree add /tmp/old REV && /tmp/old/web/build.sh`).
 import fs from 'node:fs';
 import path from 'node:path';
+import { pathToFileURL } from 'node:url';
 import { createDecoder } from '../src/prm_decoder.js';
 const [assets, wa, wb, nb = '30'] = process.argv.slice(2);
-if (!wb) { console.error('usage: node web/bench/cpu_ab.mjs ASSETS_DIR A.wasm B.wasm [BATCHES]'); process.exit(1); }
-const A = await createDecoder({ wasmBinary: fs.readFileSync(wa) });
-const B = await createDecoder({ wasmBinary: fs.readFileSync(wb) });
+if (!wb) { console.error('usage: node web/bench/cpu_ab.mjs ASSETS_DIR A B [BATCHES]  (A, B: .wasm files or web/ directories)'); process.exit(1); }
+const load = async (x) => {
+  if (fs.statSync(x).isDirectory()) {
+    const mod = await import(pathToFileURL(path.join(x, 'src', 'prm_decoder.js')).href);
+    return mod.createDecoder({ wasmBinary: fs.readFileSync(path.join(x, 'dist', 'prm_decoder_wasm.wasm')) });
+  }
+  return createDecoder({ wasmBinary: fs.readFileSync(x) });
+};
+const A = await load(wa);
+const B = await load(wb);
 const cpuMs = (f, n) => { const c0 = process.cpuUsage(); for (let i = 0; i < n; ++i) f(); const c = process.cpuUsage(c0); return (c.user + c.system) / 1000 / n; };
 const med = (x) => { const s = [...x].sort((p, q) => p - q); return s[Math.floor(s.length / 2)]; };
 console.log('| asset | V | A fastest ms | B fastest ms | B/A fastest | A median ms | B median ms | B/A median |');
