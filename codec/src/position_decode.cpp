@@ -19,11 +19,17 @@ inline bool decode_residual(RangeDecoder& rc, ResidualModels& m, int axis, int c
   RiceState& rice = m.rice[axis][ctx];
   const int k = rice.k();
   BitModel* unary = m.unary[axis][ctx];
-  // The unary part: models 0 .. kUnaryModels - 2 one per position, then the last one up to the escape.
+  // The unary part: models 0 .. kUnaryModels - 2 one per position, then the last one up to the escape. Natively
+  // two loops (no per-bit clamp of the model index: -1.9% instructions on feline_5k); in wasm one, as the two cost
+  // 1.6 kB of the module (344 B gzipped) for no measured gain in V8.
   uint32_t q = 0;
+#if defined(__wasm__)
+  while (q < kUnaryEscape && rc.decode_bit(unary[q < kUnaryModels ? q : kUnaryModels - 1])) ++q;
+#else
   while (q < kUnaryModels - 1 && rc.decode_bit(unary[q])) ++q;
   if (q == kUnaryModels - 1)
     while (q < kUnaryEscape && rc.decode_bit(unary[kUnaryModels - 1])) ++q;
+#endif
   if (q == kUnaryEscape) q += rc.decode_direct(kEscapeBits);
   uint64_t u = q;
   if (k > 0) {
