@@ -515,7 +515,8 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
   if (options.bits <= 0 && options.step_scale <= 0) effort_plan(options.effort);  // refused before any work
   const bool has_target = options.target_error > 0 || options.max_error > 0;
   // --fill-holes asks for a closed output: the general path codes the input as it is, open, so auto is prm then.
-  const bool fill_open = options.fill_holes && validate_mesh(input).boundary_loops > 0;
+  const MeshReport input_check = validate_mesh(input);
+  const bool fill_open = options.fill_holes && input_check.boundary_loops > 0;
   if (fill_open && options.mode == PackMode::general)
     throw std::invalid_argument("--fill-holes closes the input's boundary loops, which --mode general keeps as they are");
   const PackMode mode =
@@ -527,13 +528,23 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
   std::unique_ptr<MetroReference> input_reference;
   if (mode != PackMode::prm) input_reference = std::make_unique<MetroReference>(&input, mo);  // borrowed
 
-  // The general candidate: the input as it comes (with its boundaries), cheap, made first.
+  // The general candidate: the input as it comes (with its boundaries), cheap, made first. The general path codes
+  // a manifold: a pinched vertex (its faces in several fans, no edge with three faces) is split first, one copy per
+  // extra fan as the repair does, which leaves the geometry as it is (the report names the copies).
   PackResult::Candidate general;
   GeneralPack general_pack;
+  Mesh general_input;  // the pinch-split copy, when the input has pinches
+  size_t general_pinches_split = 0;
   if (mode != PackMode::prm) {
     const auto t0 = std::chrono::steady_clock::now();
+    const Mesh* coded = &input;
+    if (input_check.non_manifold_vertices > 0 && input_check.non_manifold_edges == 0) {
+      general_input = input;
+      general_pinches_split = split_pinched_vertices(general_input);
+      coded = &general_input;
+    }
     try {
-      general_pack = pack_general(input, *input_reference, target, options.bits, options.max_minor,
+      general_pack = pack_general(*coded, *input_reference, target, options.bits, options.max_minor,
                                   kQuantizationMargin * options.max_error);
       general.made = true;
       general.bytes = general_pack.stream.size();
@@ -563,8 +574,13 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
     out.mode_reason = std::move(reason);
     out.general_candidate = general;
     out.input_vertices = input.num_vertices();
-    // The general stream codes the input as it is: its boundary loops are the input's.
-    out.boundary_loops_in = out.boundary_loops_out = validate_mesh(input).boundary_loops;
+    if (general_pinches_split > 0) {  // what was coded: the input with its pinched vertices split
+      out.repaired = true;
+      out.repair.pinched_vertices_split = general_pinches_split;
+      out.repaired_input = general_input;
+    }
+    // The general stream codes the input as it is (pinches split): its boundary loops are the input's.
+    out.boundary_loops_in = out.boundary_loops_out = validate_mesh(out.repaired ? general_input : input).boundary_loops;
     return out;
   };
   if (mode == PackMode::general) return general_result("--mode general");
@@ -608,9 +624,12 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
   if (mode == PackMode::automatic && general.made && general.bytes < prm.bytes) {
     std::string reason = "auto: the general stream (" + bytes_rms(general) + ") is smaller than the piecewise "
                          "regular one (" + bytes_rms(prm) + ")";
-    if (out.repaired)
+    if (out.repaired && out.repair.holes_filled > 0)
       reason += "; the piecewise regular mesh needed repair (" + std::to_string(out.repair.holes_filled) +
                 " hole(s) filled), the general stream codes the input as it is";
+    if (general_pinches_split > 0)
+      reason += "; the general stream codes the input with its pinched vertices split (" +
+                std::to_string(general_pinches_split) + (general_pinches_split == 1 ? " copy)" : " copies)");
     PackResult g = general_result(std::move(reason));
     g.prm_candidate = prm;
     g.seconds_repair = out.seconds_repair;
