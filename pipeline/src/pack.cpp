@@ -491,24 +491,31 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
 // them (a broken invariant, std::logic_error), the paper's protocol instead, named in the report
 // (RepairReport::notes) and by boundary_fallback. Never a crash.
 PackResult pack_prm_open(const Mesh& input, const PackOptions& options, const MetroReference* input_reference) {
-  if (options.fill_holes) return pack_prm(input, options, input_reference);
+  return detail::pack_keeping_boundary_or_filling(input, options, [&](const Mesh& m, const PackOptions& o) {
+    return pack_prm(m, o, input_reference);
+  });
+}
+
+}  // namespace
+
+PackResult detail::pack_keeping_boundary_or_filling(const Mesh& input, const PackOptions& options,
+                                                    const PrmAttempt& attempt) {
+  if (options.fill_holes) return attempt(input, options);
   try {
-    return pack_prm(input, options, input_reference);
+    return attempt(input, options);
   } catch (const std::invalid_argument&) {
     throw;
   } catch (const std::logic_error& e) {
     if (validate_mesh(input).closed()) throw;
     PackOptions filled = options;
     filled.fill_holes = true;
-    PackResult r = pack_prm(input, filled, input_reference);
+    PackResult r = attempt(input, filled);
     r.boundary_fallback = true;
     r.repair.notes.push_back("the remesher could not keep the open boundary (" + std::string(e.what()) + "): its " +
                              std::to_string(r.repair.holes_filled) + " boundary loop(s) were filled with fans instead");
     return r;
   }
 }
-
-}  // namespace
 
 PackResult pack(const Mesh& input, const PackOptions& options) {
   check_remesh_range(input);  // before anything squares a length

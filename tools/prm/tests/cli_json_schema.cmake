@@ -67,6 +67,24 @@ string(JSON made GET "${last_json}" candidates prm made)
 if(made)
   message(FATAL_ERROR "prm pack --mode general made a piecewise regular candidate:\n${last_json}")
 endif()
+# remesh keeps an open input's boundary loops (issue 22), and closes them with --fill-holes.
+run_json(remesh KEYS boundary_loops_in boundary_loops_out holes_closed
+         ARGS remesh "${DATA}/open_box.off" -o "${WORK}/open_box_prm.ply" --grid-fraction 0.1)
+string(JSON loops_in GET "${last_json}" boundary_loops_in)
+string(JSON loops_out GET "${last_json}" boundary_loops_out)
+string(JSON closed GET "${last_json}" holes_closed)
+if(NOT loops_in EQUAL 1 OR NOT loops_out EQUAL 1 OR NOT closed EQUAL 0)
+  message(FATAL_ERROR "prm remesh open_box.off: loops ${loops_in} in, ${loops_out} out, ${closed} closed; expected "
+                      "1, 1, 0:\n${last_json}")
+endif()
+run_json(remesh KEYS boundary_loops_in boundary_loops_out holes_closed
+         ARGS remesh "${DATA}/open_box.off" -o "${WORK}/open_box_filled_prm.ply" --grid-fraction 0.1 --fill-holes)
+string(JSON loops_out GET "${last_json}" boundary_loops_out)
+string(JSON closed GET "${last_json}" holes_closed)
+if(NOT loops_out EQUAL 0 OR NOT closed EQUAL 1)
+  message(FATAL_ERROR "prm remesh open_box.off --fill-holes: loops ${loops_out} out, ${closed} closed; expected "
+                      "0, 1:\n${last_json}")
+endif()
 run_json(render KEYS input output ${counts} seconds ARGS render "${WORK}/tet.prm" -o "${WORK}/tet.png" --size 64x64)
 
 # render of a .prm draws the mesh: more than the background in the picture.

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -167,5 +168,15 @@ struct PackResult {
 // mode general, prm::InputError when the general path refuses the input and TargetNotReached when no bit depth meets
 // the target; with mode automatic, the PRM's error (naming the general path's too) when neither can be made.
 PackResult pack(const Mesh& input, const PackOptions& options);
+
+namespace detail {
+// pack's fallback on an open surface with the piecewise regular attempt given: `attempt(input, options)` (pack's own
+// remesh-and-encode) keeps the boundary loops unless options.fill_holes; if it throws std::logic_error (a broken
+// remesher invariant; std::invalid_argument is rethrown, as is any error on a closed input), the attempt is made
+// again with fill_holes, and the result says so (PackResult::boundary_fallback, a note in repair.notes). A seam for
+// the tests: no known mesh makes the remesher fail on its boundary.
+using PrmAttempt = std::function<PackResult(const Mesh&, const PackOptions&)>;
+PackResult pack_keeping_boundary_or_filling(const Mesh& input, const PackOptions& options, const PrmAttempt& attempt);
+}  // namespace detail
 
 }  // namespace prm::pipeline
