@@ -13,6 +13,7 @@
 #include "prm/mesh_validate.h"
 #include "prm/metro_distance.h"
 #include "prm/progress.h"
+#include "prm/pipeline/boundary_simplification.h"
 #include "prm/pipeline/codec_bridge.h"
 #include "prm/pipeline/pack_general.h"
 #include "prm/remesh/lattice.h"
@@ -43,6 +44,7 @@ struct SearchContext {
   const MetroReference& search;
   const MetroReference& full;
   EffortPlan plan;
+  const AabbTree* source_tree = nullptr;  // source's tree when source is not the references' mesh (a thinned boundary)
 };
 
 // One bit depth and step scale: repair (done by the caller), remesh, encode. `measured`: false when the chosen stream,
@@ -56,7 +58,7 @@ PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bit
   auto t0 = std::chrono::steady_clock::now();
   remesh::RemeshOptions ro;
   ro.layout = &ctx.layout;
-  ro.input_tree = &ctx.full.tree();  // the Metro reference's tree of the same mesh (source)
+  ro.input_tree = ctx.source_tree ? ctx.source_tree : &ctx.full.tree();  // the tree of source
   ro.grid_tolerance = ctx.plan.grid_tolerance;
   ro.accept_error = ctx.plan.accept_error;
   ro.first_exponent = ctx.plan.first_exponent;
@@ -350,14 +352,27 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
   RepairOptions repair_options;
   repair_options.fill_holes = options.fill_holes;
   if (repaired) closed = repair_mesh(input, &repair, repair_options);  // throws InputError when it cannot
-  const Mesh& source = repaired ? closed : input;
-  const size_t loops_in = repaired ? validate_mesh(source).boundary_loops + repair.holes_filled : check.boundary_loops;
+  const Mesh& measured_against = repaired ? closed : input;  // what the error is measured against
+  const size_t loops_in =
+      repaired ? validate_mesh(measured_against).boundary_loops + repair.holes_filled : check.boundary_loops;
+  // A thinned-out boundary (PackOptions::boundary_simplification): what is remeshed, with its own tree.
+  Mesh thinned;
+  std::unique_ptr<AabbTree> thinned_tree;
+  size_t boundary_removed = 0;
+  if (options.boundary_simplification > 0 && options.target_error > 0 && !options.fill_holes && loops_in > 0) {
+    thinned = measured_against;
+    boundary_removed =
+        simplify_boundary(thinned, options.boundary_simplification * options.target_error * check.diagonal).removed;
+    if (boundary_removed > 0) thinned_tree = std::make_unique<AabbTree>(thinned);
+  }
+  const Mesh& source = boundary_removed > 0 ? thinned : measured_against;
   const double seconds_repair = seconds_since(t0);
   ProgressJob::stage("reliefs");
   MetroOptions mo;
   mo.samples = options.metro_samples;  // 0: Metro's ten per face, as `prm compare` measures
   std::unique_ptr<MetroReference> own_reference;
-  if (repaired || !input_reference) own_reference = std::make_unique<MetroReference>(&source, mo);  // borrowed: source outlives the search
+  if (repaired || !input_reference)
+    own_reference = std::make_unique<MetroReference>(&measured_against, mo);  // borrowed: it outlives the search
   const MetroReference& reference = own_reference ? *own_reference : *input_reference;
   // The search's own, sparser samples (only where they are fewer than the report's).
   MetroOptions so = mo;
@@ -369,8 +384,8 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
   relief_options.tau = options.tau;
   relief_options.parallel = options.parallel;
   const remesh::ReliefLayout layout = remesh::build_reliefs(source, relief_options);
-  const SearchContext ctx{source, layout, sparse ? *sparse_reference : reference, reference, plan};
-  const SearchContext full_ctx{source, layout, reference, reference, plan};
+  const SearchContext ctx{source, layout, sparse ? *sparse_reference : reference, reference, plan, thinned_tree.get()};
+  const SearchContext full_ctx{source, layout, reference, reference, plan, thinned_tree.get()};
   size_t rounds = 0;
   int attempts = 0;
   // One bit depth and step scale; repeated with full-density Metro when the sparse samples promised too much.
@@ -480,6 +495,7 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
   out.remesh_rounds = rounds;
   out.boundary_loops_in = loops_in;
   out.boundary_loops_out = validate_mesh(out.remesh.prm.mesh).boundary_loops;
+  out.boundary_vertices_removed = boundary_removed;
   out.seconds_repair = seconds_repair;
   out.repaired = repaired;
   out.repair = repair;

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "prm/boundary_deviation.h"
 #include "prm/mesh_validate.h"
 #include "prm/metro_distance.h"
 #include "prm/pipeline/codec_bridge.h"
@@ -22,45 +23,8 @@ namespace prm::test {
 using prm::Mesh;
 using prm::Vec3;
 
-// The boundary edges of a manifold, oriented mesh: half-edges whose reverse no face has.
-inline std::vector<std::array<uint32_t, 2>> boundary_edges(const Mesh& m) {
-  std::vector<std::array<uint32_t, 2>> he;
-  for (const prm::Tri& t : m.triangles)
-    for (int k = 0; k < 3; ++k) he.push_back({t[k], t[(k + 1) % 3]});
-  std::vector<std::array<uint32_t, 2>> sorted = he;
-  std::sort(sorted.begin(), sorted.end());
-  std::vector<std::array<uint32_t, 2>> out;
-  for (const auto& e : he)
-    if (!std::binary_search(sorted.begin(), sorted.end(), std::array<uint32_t, 2>{e[1], e[0]})) out.push_back(e);
-  return out;
-}
-
-inline double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
-  const Vec3 ab = b - a;
-  const double l2 = prm::dot(ab, ab);
-  const double t = l2 > 0 ? std::clamp(prm::dot(p - a, ab) / l2, 0.0, 1.0) : 0.0;
-  return prm::norm(p - (a + ab * t));
-}
-
-// The distances from the boundary vertices of `out` to the boundary polyline of `in` (model units): their largest
-// and their root mean square.
-struct BoundaryDeviation {
-  double max = 0, rms = 0;
-};
-inline BoundaryDeviation boundary_deviation(const Mesh& in, const Mesh& out) {
-  const auto ein = boundary_edges(in), eout = boundary_edges(out);
-  BoundaryDeviation d;
-  double sum2 = 0;
-  for (const auto& e : eout) {  // each boundary vertex starts one boundary edge
-    const Vec3& p = out.positions[e[0]];
-    double best = HUGE_VAL;
-    for (const auto& f : ein) best = std::min(best, point_segment_distance(p, in.positions[f[0]], in.positions[f[1]]));
-    d.max = std::max(d.max, best);
-    sum2 += best * best;
-  }
-  d.rms = eout.empty() ? 0 : std::sqrt(sum2 / static_cast<double>(eout.size()));
-  return d;
-}
+using prm::BoundaryDeviation;
+using prm::boundary_deviation;
 
 struct Measured {
   size_t loops_in = 0, loops_out = 0;

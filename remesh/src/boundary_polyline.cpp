@@ -4,38 +4,9 @@
 #include <array>
 #include <cmath>
 
+#include "prm/boundary_deviation.h"
+
 namespace prm::remesh {
-namespace {
-
-// The edges (a, b) of m's faces whose reverse (b, a) and duplicate no other face has: the boundary of an oriented
-// manifold. An edge two faces share in the same direction is not boundary either.
-std::vector<std::array<uint32_t, 2>> boundary_edges(const Mesh& m) {
-  std::vector<std::array<uint32_t, 2>> undirected;
-  undirected.reserve(3 * m.triangles.size());
-  for (const Tri& t : m.triangles)
-    for (size_t k = 0; k < 3; ++k) {
-      const uint32_t a = t[k], b = t[(k + 1) % 3];
-      undirected.push_back({std::min(a, b), std::max(a, b)});
-    }
-  std::sort(undirected.begin(), undirected.end());
-  std::vector<std::array<uint32_t, 2>> out;
-  for (size_t i = 0; i < undirected.size();) {
-    size_t j = i;
-    while (j < undirected.size() && undirected[j] == undirected[i]) ++j;
-    if (j - i == 1) out.push_back(undirected[i]);
-    i = j;
-  }
-  return out;
-}
-
-double point_segment_distance(const Vec3& p, const Vec3& a, const Vec3& b) {
-  const Vec3 ab = b - a;
-  const double l2 = dot(ab, ab);
-  const double t = l2 > 0 ? std::clamp(dot(p - a, ab) / l2, 0.0, 1.0) : 0.0;
-  return norm(p - (a + ab * t));
-}
-
-}  // namespace
 
 std::vector<uint8_t> boundary_vertex_flags(const Mesh& m) {
   std::vector<uint8_t> flags(m.positions.size(), 0);

@@ -93,6 +93,10 @@ struct PackOptions {
   // False: the output keeps the input's boundary loops (the remesher treats the mesh boundary as a seam with no
   // neighbour and never moves its vertices).
   bool fill_holes = false;
+  // Without fill_holes, with a target error: before remeshing, each boundary loop is thinned out (a 1-D
+  // simplification, simplify_boundary) within this fraction of the target error (times the diagonal); 0: the
+  // boundary vertices are all kept. The error is still measured against the input as it came.
+  double boundary_simplification = 0;
 };
 
 // What one effort level does (effort_plan()).
@@ -130,6 +134,7 @@ struct PackResult {
   bool repaired = false;        // the input had pinches or degenerate faces (or holes, with fill_holes)
   size_t boundary_loops_in = 0;   // of the input after the repair's pinch splits, before any hole is filled
   size_t boundary_loops_out = 0;  // of the piecewise regular mesh (the stream's; RepairReport::holes_filled: filled)
+  size_t boundary_vertices_removed = 0;  // by PackOptions::boundary_simplification, before remeshing
   // Without fill_holes: the remesher could not keep the boundary (an invariant broke, std::logic_error) and pack
   // filled the holes instead, with a note in repair.notes saying so.
   bool boundary_fallback = false;
