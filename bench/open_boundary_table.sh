@@ -5,8 +5,9 @@
 # the input it remeshed: the open input, or with --fill-holes the input with its holes filled), bytes, CPU seconds
 # (user + system) and peak RSS; and the distance of the decoded boundary from the input's (bench/boundary_distance.cpp:
 # the RMS and the largest distance of a decoded boundary vertex to the input's boundary polyline, fractions of the
-# diagonal). A third row per mesh, `thin`, adds --boundary-simplification 1 (the loops thinned out within the target
-# before remeshing).
+# diagonal). Rows per mesh: `open` (the default, --mode auto: the smaller of the PRM and the input coded as it is),
+# `fill` (--fill-holes), `prm` (--mode prm: the remeshed stream keeping the holes) and `thin` (--mode prm
+# --boundary-simplification 1: the loops thinned out within the target before remeshing).
 # The meshes: bunny_zipper (5 holes), CGAL's elephant-with-holes and mech-holes-shark, and two generated here as
 # in pipeline/tests/pack_open_boundary_test.cpp: an 81 x 81 height-field terrain and spot cut at mid-height.
 #
@@ -76,10 +77,11 @@ for spec in "terrain:$work/terrain.obj" "spot_cut:$work/spot_cut.obj" "bunny_zip
   name="${spec%%:*}"
   file="${spec#*:}"
   if [ -n "$only" ] && ! echo " $only " | grep -q " $name "; then continue; fi
-  for mode in open fill thin; do
+  for mode in open fill prm thin; do
     flag=""
     [ "$mode" = fill ] && flag="--fill-holes"
-    [ "$mode" = thin ] && flag="--boundary-simplification 1"
+    [ "$mode" = prm ] && flag="--mode prm"
+    [ "$mode" = thin ] && flag="--mode prm --boundary-simplification 1"
     if ! /usr/bin/time -f '%U %S %M' -o "$work/time" "$prm" pack "$file" --target-error "$target" $flag --json \
          -o "$work/out.prm" > "$work/report.json" 2> "$work/err"; then
       printf "%-22s %-5s failed: %s\n" "$name" "$mode" "$(grep -v '^{' "$work/err" | tail -1)"

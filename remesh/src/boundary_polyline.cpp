@@ -1,4 +1,4 @@
-#include "boundary_polyline.h"
+#include "prm/remesh/boundary_polyline.h"
 
 #include <algorithm>
 #include <array>

@@ -9,7 +9,7 @@
 #include <unordered_map>
 #include <vector>
 
-#include "boundary_polyline.h"
+#include "prm/remesh/boundary_polyline.h"
 #include "prm/vec3.h"
 
 namespace prm::remesh {
@@ -494,11 +494,8 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* i
   // First keeping each face's side (strictly, then not), then collapsing neighbours that cannot be told apart, then
   // an edge of each face still broken; a last pass lets the input's side go, for a two-sided sheet (which repair
   // makes of an open triangle, and which has no side) and whatever is left.
-  if (polyline) {
-    // An open surface: first everything that leaves the mesh boundary where it is (moves of other vertices, then
-    // collapses of an edge whose end off the boundary goes: a lattice vertex next to a straight boundary, which may
-    // only move along its height, rounds onto the boundary's line), then the passes below, which may move it.
-    boundary_moves = false;
+  auto moves_then_collapses = [&] {
+    strict = true;
     move_zero_area_corners();
     strict = false;
     move_zero_area_corners();
@@ -508,18 +505,16 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* i
     }
     collapse_inseparable();
     collapse_broken();
+  };
+  if (polyline) {
+    // An open surface: first everything that leaves the mesh boundary where it is (moves of other vertices, then
+    // collapses of an edge whose end off the boundary goes: a lattice vertex next to a straight boundary, which may
+    // only move along its height, rounds onto the boundary's line), then the same passes again, which may move it.
+    boundary_moves = false;
+    moves_then_collapses();
     boundary_moves = true;
-    strict = true;
   }
-  move_zero_area_corners();
-  strict = false;
-  move_zero_area_corners();
-  for (bool s : {true, false}) {
-    strict = s;
-    separate_coincident();
-  }
-  collapse_inseparable();
-  collapse_broken();
+  moves_then_collapses();
   use_input = false;
   move_zero_area_corners();
   separate_coincident();

@@ -1,6 +1,7 @@
 // The input's mesh boundary (its edges with one face) as a set of segments, for the distance from a point near it
 // to it (issue 22: an open surface's boundary vertices are rounded to the quantization point nearest the input's
-// boundary, quantized_separation.cpp), and the boundary vertices of a mesh.
+// boundary, quantized_separation.cpp; pack's general candidate measures its decoded boundary with it, pack_general.h),
+// and the boundary vertices of a mesh.
 #pragma once
 
 #include <array>
