@@ -162,6 +162,10 @@ void add_pack_command(CLI::App& root) {
     if (read.degenerate_dropped) changes.push_back(std::to_string(read.degenerate_dropped) + " face(s) with a repeated index dropped on reading");
     if (read.vertices_welded) changes.push_back(std::to_string(read.vertices_welded) + " coincident vertices welded on reading");
     for (const std::string& c : repair_summary(r.repair)) changes.push_back(c);
+    if (r.boundary_vertices_removed)
+      changes.push_back(std::to_string(r.boundary_vertices_removed) + " boundary vertices thinned out of the input's "
+                        "loops before remeshing (--boundary-simplification: within " +
+                        std::to_string(opt->boundary_simplification) + " x the target of the input's loops)");
     if (const size_t moved = r.remesh.prm.stats.quantized_moves)
       changes.push_back(std::to_string(moved) + " remeshed vertices moved by up to two quantization steps so that no "
                         "triangle loses its area");
