@@ -103,6 +103,8 @@ struct UnionFind {
   }
 };
 
+}  // namespace
+
 // Corners of one vertex are joined across every edge with two faces; a vertex whose corners form several
 // groups is pinched. Requires no edge with three or more faces. Returns the number of vertices added.
 size_t split_pinched_vertices(Mesh& m) {
@@ -146,14 +148,14 @@ size_t split_pinched_vertices(Mesh& m) {
     if (copy_of_root[root] == UINT32_MAX) {
       copy_of_root[root] = static_cast<uint32_t>(m.positions.size());
       m.positions.push_back(m.positions[v]);
+      for (Property& p : m.vertex_properties)
+        if (p.values.size() + 1 == m.positions.size()) p.values.push_back(p.values[v]);
       ++added;
     }
     m.triangles[c / 3][c % 3] = copy_of_root[root];
   }
   return added;
 }
-
-}  // namespace
 
 Mesh repair_mesh(const Mesh& in, RepairReport* report, const RepairOptions& options) {
   RepairReport local;

@@ -174,6 +174,10 @@ ScenePackReport pack_scene(Document& doc, const ScenePackOptions& options) {
           r.diagonal = d.diagonal;
           r.bits = packed.bits;
           r.repaired = packed.repaired;
+          r.boundary_loops_in = packed.boundary_loops_in;
+          r.boundary_loops_out = packed.boundary_loops_out;
+          r.holes_filled = packed.repair.holes_filled;
+          r.boundary_fallback = packed.boundary_fallback;
           r.mode = pipeline::pack_mode_name(packed.mode);
           r.mode_reason = packed.mode_reason;
           r.stream_bytes = packed.stream.size();

@@ -227,6 +227,36 @@ TEST(GltfPackScene, ACubeIsCodedAsItIs) {
   EXPECT_EQ(decode_prm_primitive(doc, 0, 0).num_vertices(), 8u);
 }
 
+// An open primitive keeps its boundary loop, and the per-primitive report says so as `prm pack` does (issue 22);
+// with fill_holes the loop is filled and reported filled.
+TEST(GltfPackScene, AnOpenPrimitiveReportsItsBoundaryLoops) {
+  Mesh sheet;  // a 9 x 9 height field: one boundary loop
+  const int n = 8;
+  for (int j = 0; j <= n; ++j)
+    for (int i = 0; i <= n; ++i) sheet.positions.push_back({i / double(n), j / double(n), 0.1 * std::sin(3.0 * i / n)});
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) {
+      const uint32_t a = uint32_t(j * (n + 1) + i), b = a + 1, c = a + uint32_t(n + 1), d = c + 1;
+      sheet.triangles.push_back({a, b, d});
+      sheet.triangles.push_back({a, d, c});
+    }
+  for (bool fill : {false, true}) {
+    Document doc = document_from_mesh(sheet, "sheet");
+    ScenePackOptions o;
+    o.pack.grid_fraction = 0.05;
+    o.pack.bits = 12;
+    o.pack.fill_holes = fill;
+    const ScenePackReport r = pack_scene(doc, o);
+    ASSERT_EQ(r.primitives.size(), 1u);
+    const PrimitiveReport& p = r.primitives[0];
+    ASSERT_TRUE(p.compressed) << p.reason;
+    EXPECT_EQ(p.boundary_loops_in, 1u);
+    EXPECT_EQ(p.boundary_loops_out, fill ? 0u : 1u);
+    EXPECT_EQ(p.holes_filled, fill ? 1u : 0u);
+    EXPECT_FALSE(p.boundary_fallback);
+  }
+}
+
 TEST(GltfPackScene, PacksAMeshAndTheStreamDecodesToTheAccessorCounts) {
   const Mesh spot = read_mesh(std::string(PRM_SHARED_MESHES) + "/spot.obj");
   Document doc = document_from_mesh(spot, "spot");

@@ -13,6 +13,7 @@
 #include "prm/mesh_validate.h"
 #include "prm/metro_distance.h"
 #include "prm/progress.h"
+#include "prm/pipeline/boundary_simplification.h"
 #include "prm/pipeline/codec_bridge.h"
 #include "prm/pipeline/pack_general.h"
 #include "prm/remesh/lattice.h"
@@ -43,6 +44,7 @@ struct SearchContext {
   const MetroReference& search;
   const MetroReference& full;
   EffortPlan plan;
+  const AabbTree* source_tree = nullptr;  // source's tree when source is not the references' mesh (a thinned boundary)
 };
 
 // One bit depth and step scale: repair (done by the caller), remesh, encode. `measured`: false when the chosen stream,
@@ -56,7 +58,7 @@ PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bit
   auto t0 = std::chrono::steady_clock::now();
   remesh::RemeshOptions ro;
   ro.layout = &ctx.layout;
-  ro.input_tree = &ctx.full.tree();  // the Metro reference's tree of the same mesh (source)
+  ro.input_tree = ctx.source_tree ? ctx.source_tree : &ctx.full.tree();  // the tree of source
   ro.grid_tolerance = ctx.plan.grid_tolerance;
   ro.accept_error = ctx.plan.accept_error;
   ro.first_exponent = ctx.plan.first_exponent;
@@ -350,14 +352,27 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
   RepairOptions repair_options;
   repair_options.fill_holes = options.fill_holes;
   if (repaired) closed = repair_mesh(input, &repair, repair_options);  // throws InputError when it cannot
-  const Mesh& source = repaired ? closed : input;
-  const size_t loops_in = repaired ? validate_mesh(source).boundary_loops + repair.holes_filled : check.boundary_loops;
+  const Mesh& measured_against = repaired ? closed : input;  // what the error is measured against
+  const size_t loops_in =
+      repaired ? validate_mesh(measured_against).boundary_loops + repair.holes_filled : check.boundary_loops;
+  // A thinned-out boundary (PackOptions::boundary_simplification): what is remeshed, with its own tree.
+  Mesh thinned;
+  std::unique_ptr<AabbTree> thinned_tree;
+  size_t boundary_removed = 0;
+  if (options.boundary_simplification > 0 && options.target_error > 0 && !options.fill_holes && loops_in > 0) {
+    thinned = measured_against;
+    boundary_removed =
+        simplify_boundary(thinned, options.boundary_simplification * options.target_error * check.diagonal).removed;
+    if (boundary_removed > 0) thinned_tree = std::make_unique<AabbTree>(thinned);
+  }
+  const Mesh& source = boundary_removed > 0 ? thinned : measured_against;
   const double seconds_repair = seconds_since(t0);
   ProgressJob::stage("reliefs");
   MetroOptions mo;
   mo.samples = options.metro_samples;  // 0: Metro's ten per face, as `prm compare` measures
   std::unique_ptr<MetroReference> own_reference;
-  if (repaired || !input_reference) own_reference = std::make_unique<MetroReference>(&source, mo);  // borrowed: source outlives the search
+  if (repaired || !input_reference)
+    own_reference = std::make_unique<MetroReference>(&measured_against, mo);  // borrowed: it outlives the search
   const MetroReference& reference = own_reference ? *own_reference : *input_reference;
   // The search's own, sparser samples (only where they are fewer than the report's).
   MetroOptions so = mo;
@@ -369,8 +384,8 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
   relief_options.tau = options.tau;
   relief_options.parallel = options.parallel;
   const remesh::ReliefLayout layout = remesh::build_reliefs(source, relief_options);
-  const SearchContext ctx{source, layout, sparse ? *sparse_reference : reference, reference, plan};
-  const SearchContext full_ctx{source, layout, reference, reference, plan};
+  const SearchContext ctx{source, layout, sparse ? *sparse_reference : reference, reference, plan, thinned_tree.get()};
+  const SearchContext full_ctx{source, layout, reference, reference, plan, thinned_tree.get()};
   size_t rounds = 0;
   int attempts = 0;
   // One bit depth and step scale; repeated with full-density Metro when the sparse samples promised too much.
@@ -480,6 +495,7 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
   out.remesh_rounds = rounds;
   out.boundary_loops_in = loops_in;
   out.boundary_loops_out = validate_mesh(out.remesh.prm.mesh).boundary_loops;
+  out.boundary_vertices_removed = boundary_removed;
   out.seconds_repair = seconds_repair;
   out.repaired = repaired;
   out.repair = repair;
@@ -491,16 +507,25 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
 // them (a broken invariant, std::logic_error), the paper's protocol instead, named in the report
 // (RepairReport::notes) and by boundary_fallback. Never a crash.
 PackResult pack_prm_open(const Mesh& input, const PackOptions& options, const MetroReference* input_reference) {
-  if (options.fill_holes) return pack_prm(input, options, input_reference);
+  return detail::pack_keeping_boundary_or_filling(input, options, [&](const Mesh& m, const PackOptions& o) {
+    return pack_prm(m, o, input_reference);
+  });
+}
+
+}  // namespace
+
+PackResult detail::pack_keeping_boundary_or_filling(const Mesh& input, const PackOptions& options,
+                                                    const PrmAttempt& attempt) {
+  if (options.fill_holes) return attempt(input, options);
   try {
-    return pack_prm(input, options, input_reference);
+    return attempt(input, options);
   } catch (const std::invalid_argument&) {
     throw;
   } catch (const std::logic_error& e) {
     if (validate_mesh(input).closed()) throw;
     PackOptions filled = options;
     filled.fill_holes = true;
-    PackResult r = pack_prm(input, filled, input_reference);
+    PackResult r = attempt(input, filled);
     r.boundary_fallback = true;
     r.repair.notes.push_back("the remesher could not keep the open boundary (" + std::string(e.what()) + "): its " +
                              std::to_string(r.repair.holes_filled) + " boundary loop(s) were filled with fans instead");
@@ -508,14 +533,13 @@ PackResult pack_prm_open(const Mesh& input, const PackOptions& options, const Me
   }
 }
 
-}  // namespace
-
 PackResult pack(const Mesh& input, const PackOptions& options) {
   check_remesh_range(input);  // before anything squares a length
   if (options.bits <= 0 && options.step_scale <= 0) effort_plan(options.effort);  // refused before any work
   const bool has_target = options.target_error > 0 || options.max_error > 0;
   // --fill-holes asks for a closed output: the general path codes the input as it is, open, so auto is prm then.
-  const bool fill_open = options.fill_holes && validate_mesh(input).boundary_loops > 0;
+  const MeshReport input_check = validate_mesh(input);
+  const bool fill_open = options.fill_holes && input_check.boundary_loops > 0;
   if (fill_open && options.mode == PackMode::general)
     throw std::invalid_argument("--fill-holes closes the input's boundary loops, which --mode general keeps as they are");
   const PackMode mode =
@@ -527,13 +551,23 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
   std::unique_ptr<MetroReference> input_reference;
   if (mode != PackMode::prm) input_reference = std::make_unique<MetroReference>(&input, mo);  // borrowed
 
-  // The general candidate: the input as it comes (with its boundaries), cheap, made first.
+  // The general candidate: the input as it comes (with its boundaries), cheap, made first. The general path codes
+  // a manifold: a pinched vertex (its faces in several fans, no edge with three faces) is split first, one copy per
+  // extra fan as the repair does, which leaves the geometry as it is (the report names the copies).
   PackResult::Candidate general;
   GeneralPack general_pack;
+  Mesh general_input;  // the pinch-split copy, when the input has pinches
+  size_t general_pinches_split = 0;
   if (mode != PackMode::prm) {
     const auto t0 = std::chrono::steady_clock::now();
+    const Mesh* coded = &input;
+    if (input_check.non_manifold_vertices > 0 && input_check.non_manifold_edges == 0) {
+      general_input = input;
+      general_pinches_split = split_pinched_vertices(general_input);
+      coded = &general_input;
+    }
     try {
-      general_pack = pack_general(input, *input_reference, target, options.bits, options.max_minor,
+      general_pack = pack_general(*coded, *input_reference, target, options.bits, options.max_minor,
                                   kQuantizationMargin * options.max_error);
       general.made = true;
       general.bytes = general_pack.stream.size();
@@ -563,8 +597,13 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
     out.mode_reason = std::move(reason);
     out.general_candidate = general;
     out.input_vertices = input.num_vertices();
-    // The general stream codes the input as it is: its boundary loops are the input's.
-    out.boundary_loops_in = out.boundary_loops_out = validate_mesh(input).boundary_loops;
+    if (general_pinches_split > 0) {  // what was coded: the input with its pinched vertices split
+      out.repaired = true;
+      out.repair.pinched_vertices_split = general_pinches_split;
+      out.repaired_input = general_input;
+    }
+    // The general stream codes the input as it is (pinches split): its boundary loops are the input's.
+    out.boundary_loops_in = out.boundary_loops_out = validate_mesh(out.repaired ? general_input : input).boundary_loops;
     return out;
   };
   if (mode == PackMode::general) return general_result("--mode general");
@@ -608,9 +647,12 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
   if (mode == PackMode::automatic && general.made && general.bytes < prm.bytes) {
     std::string reason = "auto: the general stream (" + bytes_rms(general) + ") is smaller than the piecewise "
                          "regular one (" + bytes_rms(prm) + ")";
-    if (out.repaired)
+    if (out.repaired && out.repair.holes_filled > 0)
       reason += "; the piecewise regular mesh needed repair (" + std::to_string(out.repair.holes_filled) +
                 " hole(s) filled), the general stream codes the input as it is";
+    if (general_pinches_split > 0)
+      reason += "; the general stream codes the input with its pinched vertices split (" +
+                std::to_string(general_pinches_split) + (general_pinches_split == 1 ? " copy)" : " copies)");
     PackResult g = general_result(std::move(reason));
     g.prm_candidate = prm;
     g.seconds_repair = out.seconds_repair;

@@ -1,6 +1,7 @@
 // PackOptions::mode (`prm pack --mode`, issue 22 "never worse than not remeshing"): auto keeps the smaller of the
 // piecewise regular stream and the input coded through the general path, both meeting the target; the forced modes
-// make the stream they name; an input the general path refuses is packed as a PRM, the report saying why.
+// make the stream they name; an input the general path refuses is packed as a PRM, the report saying why; a pinched
+// vertex is split for the general path.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -115,20 +116,58 @@ TEST(PackMode, ForcedModes) {
   EXPECT_FALSE(q.general_candidate.made);
 }
 
-// A pinched vertex: the general path refuses it, repair splits it for the PRM; auto says why it is prm.
-TEST(PackMode, NonManifoldInputIsRemeshed) {
+// A pinched vertex: the general path codes the input with the pinch split (one copy per extra fan, the geometry
+// unchanged), the report naming the copy; an edge with three faces is refused by both paths, by name.
+TEST(PackMode, PinchedVertexIsSplitForTheGeneralPath) {
   const prm::Mesh bowtie = prm::test::bowtie();
   PackOptions o;
   o.target_error = 2e-4;
   o.bits = 12;
   o.step_scale = 1;
   const PackResult r = prm::pipeline::pack(bowtie, o);
-  EXPECT_EQ(r.mode, PackMode::prm);
-  EXPECT_FALSE(r.general_candidate.made);
-  EXPECT_NE(r.general_candidate.refused.find("non-manifold"), std::string::npos) << r.general_candidate.refused;
-  EXPECT_NE(r.mode_reason.find("general path cannot code"), std::string::npos) << r.mode_reason;
+  expect_consistent_choice(r);
+  EXPECT_EQ(r.mode, PackMode::general) << r.mode_reason;
+  EXPECT_EQ(r.general_candidate.vertices, 6u);  // 5 + the pinched vertex's copy
+  EXPECT_TRUE(r.repaired);
+  EXPECT_EQ(r.repair.pinched_vertices_split, 1u);
+  EXPECT_NE(r.mode_reason.find("pinched vertices split (1 cop"), std::string::npos) << r.mode_reason;
+  EXPECT_EQ(r.boundary_loops_in, 2u);
+  EXPECT_EQ(r.boundary_loops_out, 2u);
+  EXPECT_LE(decoded_rms(bowtie, r), o.target_error);
   o.mode = PackMode::general;
-  EXPECT_THROW(prm::pipeline::pack(bowtie, o), prm::InputError);
+  const PackResult g = prm::pipeline::pack(bowtie, o);
+  EXPECT_EQ(g.mode, PackMode::general);
+  EXPECT_EQ(g.repair.pinched_vertices_split, 1u);
+
+  prm::Mesh fin = bowtie;  // a third triangle on the edge (0, 1): an edge with three faces
+  fin.positions.push_back({1, 0.5, 1});
+  fin.triangles.push_back({0, 1, 5});
+  o.mode = PackMode::automatic;
+  try {
+    prm::pipeline::pack(fin, o);
+    ADD_FAILURE() << "an edge with three faces was packed";
+  } catch (const prm::InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("the general path"), std::string::npos) << e.what();
+  }
+}
+
+// rabbit_1k_decimated has one pinched vertex: the general path codes its split copy, and auto keeps that stream
+// (a PRM would have n_r/n_o 14.4 there), within the target against the input (Metro here, at full density).
+TEST(PackMode, PinchedRabbitIsCodedAsItIs) {
+  const prm::Mesh rabbit = prm::read_mesh(std::string(PRM_SHARED_MESHES) + "/rabbit_1k_decimated.off");
+  PackOptions o;
+  o.target_error = 2e-4;
+  const PackResult r = prm::pipeline::pack(rabbit, o);
+  expect_consistent_choice(r);
+  EXPECT_EQ(r.mode, PackMode::general) << r.mode_reason;
+  EXPECT_EQ(r.repair.pinched_vertices_split, 1u);
+  EXPECT_EQ(r.report.vertices, rabbit.num_vertices() + 1);
+  const double rms = decoded_rms(rabbit, r);
+  EXPECT_LE(rms, o.target_error);
+  std::printf("rabbit_1k_decimated: %s, %zu B (PRM %zu B), %u vertices (n_r/n_o %.3f), decoded RMS %.3e: %s\n",
+              prm::pipeline::pack_mode_name(r.mode), r.stream.size(), r.prm_candidate.bytes, r.report.vertices,
+              static_cast<double>(r.report.vertices) / static_cast<double>(rabbit.num_vertices()), rms,
+              r.mode_reason.c_str());
 }
 
 // Small real meshes at 2e-4 (a CAD part, a sparse cow): whichever auto keeps is the smaller stream, and both meet

@@ -2,15 +2,23 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <iterator>
+#include <optional>
 #include <unordered_map>
 #include <vector>
 
+#include "prm/remesh/boundary_polyline.h"
 #include "prm/vec3.h"
 
 namespace prm::remesh {
 namespace {
+
+// Issue 22: a mesh-boundary vertex is coded at the point within this many steps per coordinate of its rounding that is
+// nearest the input's boundary polyline, and the polyline is searched this far around a point (in steps).
+constexpr int64_t kBoundaryRoundingRadius = 2;
+constexpr double kBoundaryReachSteps = 8;
 
 using Q3 = std::array<int64_t, 3>;
 
@@ -81,6 +89,74 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* i
     return triangle_normal_area2(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]);
   };
   auto against = [](const Q3& n, const Vec3& r) { return n[0] * r[0] + n[1] * r[1] + n[2] * r[2] <= 0; };
+
+  // Issue 22, an open input: the vertices on the mesh boundary (the input's boundary vertices and the grid's
+  // crossings of its boundary edges, which the remesher never moves) are coded at the quantization point nearest the
+  // input's boundary polyline, not the nearest one: rounding alone puts them up to half a step per coordinate off it.
+  // The decoder is unaffected (it is the encoder's choice of quantized value). The passes below move them only when
+  // no other corner of a broken face can move, and then to the free point nearest the polyline.
+  std::optional<BoundaryPolyline> polyline;
+  std::vector<uint8_t> on_boundary(nv, 0);
+  if (input) {
+    polyline.emplace(*input, kBoundaryReachSteps * frame.step);
+    if (polyline->empty())
+      polyline.reset();
+    else
+      on_boundary = boundary_vertex_flags(m);
+  }
+  auto real_point = [&](const Q3& p) {
+    Vec3 x;
+    for (int a = 0; a < 3; ++a) x[static_cast<size_t>(a)] = frame.to_real(static_cast<double>(p[static_cast<size_t>(a)]), a);
+    return x;
+  };
+  auto polyline_steps = [&](const Q3& p) { return polyline->distance(real_point(p)) / frame.step; };
+  if (polyline) {
+    std::vector<std::vector<uint32_t>> faces_of(nv);
+    for (size_t f = 0; f < nf; ++f)
+      for (uint32_t v : m.triangles[f])
+        if (on_boundary[v]) faces_of[v].push_back(static_cast<uint32_t>(f));
+    for (size_t v = 0; v < nv; ++v) {
+      if (!on_boundary[v] || prm.vertex_relief[v] >= 0) continue;
+      Vec3 u;
+      for (int a = 0; a < 3; ++a) u[static_cast<size_t>(a)] = frame.to_quant(m.positions[v][static_cast<size_t>(a)], a);
+      // A candidate keeps every face around v with an area and on its side (its quantized normal within 90 degrees
+      // of its normal before).
+      auto keeps_faces = [&](const Q3& p) {
+        for (uint32_t f : faces_of[v]) {
+          const Tri& t = m.triangles[f];
+          Q3 c[3];
+          for (int i = 0; i < 3; ++i) c[i] = t[static_cast<size_t>(i)] == v ? p : q[t[static_cast<size_t>(i)]];
+          const Q3 n = cross(minus(c[1], c[0]), minus(c[2], c[0]));
+          if (is_zero(n) || against(n, real_normal(f))) return false;
+        }
+        return true;
+      };
+      Q3 best = q[v];
+      double best_d = polyline_steps(q[v]), best_d2 = HUGE_VAL;
+      const int64_t r = kBoundaryRoundingRadius;
+      for (int64_t dx = -r; dx <= r; ++dx)
+        for (int64_t dy = -r; dy <= r; ++dy)
+          for (int64_t dz = -r; dz <= r; ++dz) {
+            const Q3 p{q[v][0] + dx, q[v][1] + dy, q[v][2] + dz};
+            if (is_zero({dx, dy, dz}) || std::min({p[0], p[1], p[2]}) < 0 || std::max({p[0], p[1], p[2]}) > top ||
+                at.count(p))
+              continue;
+            const double d = polyline_steps(p);
+            double d2 = 0;
+            for (size_t a = 0; a < 3; ++a) d2 += (static_cast<double>(p[a]) - u[a]) * (static_cast<double>(p[a]) - u[a]);
+            if (d > best_d || (d == best_d && d2 >= best_d2) || !keeps_faces(p)) continue;
+            best = p;
+            best_d = d;
+            best_d2 = d2;
+          }
+      if (best == q[v]) continue;
+      if (--at[q[v]] == 0) at.erase(q[v]);
+      q[v] = best;
+      ++at[q[v]];
+      m.positions[v] = real_point(best);
+      ++st.boundary_rounded;
+    }
+  }
   bool use_input = true;  // false in the last pass, which lets the input's side go
   // With the input: the normals of the input's faces nearest the centroid of face f as the remesher placed it and as
   // quantized (where the decoder puts it; the orientation test of the remesher's invariants, as bench's stream check
@@ -141,6 +217,7 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* i
   // faced has no quantization point, may come out either way; a thin triangle is better than none). Either way, with
   // the input at hand, a moved face never faces away from the input's surface next to it.
   bool strict = true;
+  bool boundary_moves = true;  // false: a vertex on the mesh boundary does not move
   auto reference = [&](size_t f) { return strict ? real_normal(f) : Vec3{0, 0, 0}; };
   // Does a face with corners r (real coordinates) and normal nr face the input's side: the orientation test of the
   // remesher's invariants, against the input's normal at the point nearest its centroid.
@@ -222,6 +299,11 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* i
           const Q3 p{q[v][0] + dx, q[v][1] + dy, q[v][2] + dz};
           double d2 = 0;
           for (size_t a = 0; a < 3; ++a) d2 += (static_cast<double>(p[a]) - u[a]) * (static_cast<double>(p[a]) - u[a]);
+          // A boundary vertex: nearest the input's boundary polyline first (then nearest where it was).
+          if (polyline && on_boundary[v]) {
+            const double d = polyline_steps(p);
+            d2 = d * d + 1e-6 * d2;
+          }
           candidates.push_back({d2, p});
         }
     std::stable_sort(candidates.begin(), candidates.end(),
@@ -259,18 +341,23 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* i
         if (dead_face[f] || !broken(f)) continue;
         size_t chosen = nv;
         Move move;
-        bool chosen_lattice = true;
+        bool chosen_lattice = true, chosen_boundary = true;
         for (uint32_t v : m.triangles[f]) {
+          if (on_boundary[v] && !boundary_moves) continue;
           const Move mv = best_move(v);
-          const bool lattice = prm.vertex_relief[v] >= 0;
+          const bool lattice = prm.vertex_relief[v] >= 0, boundary = on_boundary[v] != 0;
           if (!mv.found) continue;
-          const bool better = chosen == nv || mv.fixed > move.fixed ||
-                              (mv.fixed == move.fixed && ((chosen_lattice && !lattice) ||
-                                                          (chosen_lattice == lattice && mv.cost < move.cost)));
+          // A vertex off the mesh boundary first (issue 22: the boundary stays where the input's is).
+          const bool better =
+              chosen == nv || (chosen_boundary && !boundary) ||
+              (chosen_boundary == boundary &&
+               (mv.fixed > move.fixed || (mv.fixed == move.fixed && ((chosen_lattice && !lattice) ||
+                                                                     (chosen_lattice == lattice && mv.cost < move.cost)))));
           if (better) {
             chosen = v;
             move = mv;
             chosen_lattice = lattice;
+            chosen_boundary = boundary;
           }
         }
         if (chosen < nv) {
@@ -282,12 +369,14 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* i
     }
   };
   // Vertices still sharing a position with another (not corners of one face): move all but one.
+  // Those off the mesh boundary first.
   auto separate_coincident = [&] {
-    for (size_t v = 0; v < nv; ++v)
-      if (shares_point(v)) {
-        const Move mv = best_move(v);
-        if (mv.found) apply(v, mv.to);
-      }
+    for (bool boundary : {false, true})
+      for (size_t v = 0; v < nv && (boundary_moves || !boundary); ++v)
+        if (shares_point(v) && (on_boundary[v] != 0) == boundary) {
+          const Move mv = best_move(v);
+          if (mv.found) apply(v, mv.to);
+        }
   };
 
   // Collapsing the edge (keep, gone) when its ends share a point and neither can move: gone's faces take keep (which
@@ -296,6 +385,8 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* i
   // keep has a quantized area and keeps its side (its real and quantized normals against its real normal before,
   // and with the input, the input's side).
   auto can_collapse = [&](uint32_t keep, uint32_t gone) {
+    if (on_boundary[gone]) return false;  // the mesh boundary stays (and an interior edge of two boundary vertices
+                                          // would pinch)
     std::vector<uint32_t> opposite, ring_keep, ring_gone;
     for (uint32_t f : around[gone])
       for (uint32_t c : m.triangles[f]) {
@@ -357,8 +448,8 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* i
       for (size_t k = 0; k < around[v].size() && shares_point(v); ++k)
         for (uint32_t u : m.triangles[around[v][k]]) {
           if (u == v || q[u] != q[v]) continue;
-          const bool v_free = prm.vertex_relief[v] < 0;
-          const uint32_t gone_first = v_free ? v : u, keep_first = v_free ? u : v;
+          const bool v_goes = on_boundary[v] != on_boundary[u] ? on_boundary[u] != 0 : prm.vertex_relief[v] < 0;
+          const uint32_t gone_first = v_goes ? v : u, keep_first = v_goes ? u : v;
           if (can_collapse(keep_first, gone_first))
             collapse(keep_first, gone_first);
           else if (can_collapse(gone_first, keep_first))
@@ -385,8 +476,9 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* i
       }
       std::sort(edges.begin(), edges.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
       for (const auto& e : edges) {
-        const bool first_free = prm.vertex_relief[e.second[0]] < 0;
-        const uint32_t gone = first_free ? e.second[0] : e.second[1], keep = first_free ? e.second[1] : e.second[0];
+        const uint32_t a = e.second[0], b = e.second[1];
+        const bool a_goes = on_boundary[a] != on_boundary[b] ? on_boundary[b] != 0 : prm.vertex_relief[a] < 0;
+        const uint32_t gone = a_goes ? a : b, keep = a_goes ? b : a;
         if (can_collapse(keep, gone)) {
           collapse(keep, gone);
           break;
@@ -402,15 +494,27 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* i
   // First keeping each face's side (strictly, then not), then collapsing neighbours that cannot be told apart, then
   // an edge of each face still broken; a last pass lets the input's side go, for a two-sided sheet (which repair
   // makes of an open triangle, and which has no side) and whatever is left.
-  move_zero_area_corners();
-  strict = false;
-  move_zero_area_corners();
-  for (bool s : {true, false}) {
-    strict = s;
-    separate_coincident();
+  auto moves_then_collapses = [&] {
+    strict = true;
+    move_zero_area_corners();
+    strict = false;
+    move_zero_area_corners();
+    for (bool s : {true, false}) {
+      strict = s;
+      separate_coincident();
+    }
+    collapse_inseparable();
+    collapse_broken();
+  };
+  if (polyline) {
+    // An open surface: first everything that leaves the mesh boundary where it is (moves of other vertices, then
+    // collapses of an edge whose end off the boundary goes: a lattice vertex next to a straight boundary, which may
+    // only move along its height, rounds onto the boundary's line), then the same passes again, which may move it.
+    boundary_moves = false;
+    moves_then_collapses();
+    boundary_moves = true;
   }
-  collapse_inseparable();
-  collapse_broken();
+  moves_then_collapses();
   use_input = false;
   move_zero_area_corners();
   separate_coincident();

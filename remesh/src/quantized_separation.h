@@ -23,6 +23,8 @@ struct QuantizedSeparationStats {
   size_t unresolved = 0;           // faces still of zero area or turned, or vertices still sharing a position, after it
   size_t collapsed = 0;            // edges collapsed: their ends shared a point and neither could move, or an edge of
                                    // a face no move mends (zero area or turned)
+  size_t boundary_rounded = 0;    // mesh-boundary vertices coded at a point nearer the input's boundary than their
+                                   // rounding (issue 22)
   size_t turned = 0;               // faces that faced the input as remeshed and face away from it as quantized (at
                                    // the input's face nearest their quantized centroid), after the last pass
 };
@@ -36,6 +38,11 @@ struct QuantizedSeparationStats {
 // orientation test of the remesher's invariants), as remeshed and as quantized; and a face that faced the input as
 // remeshed but does not as quantized (its corners rounded over a crease or a thin part's rim) is mended like one
 // the rounding turned over. A face that no move mends has an edge collapsed if that keeps every face's side.
+// An open input (issue 22): each vertex on the mesh boundary (the remesher never moves them) is first coded at the
+// free quantization point within two steps per coordinate nearest the input's boundary polyline (not the nearest
+// one) where every face around it keeps an area and its side; the passes then move other corners first, and
+// collapse edges first whose end off the boundary goes; a boundary vertex they must move goes to the point nearest
+// the polyline; a boundary vertex is never collapsed away.
 QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* input = nullptr,
                                                      const AabbTree* tree = nullptr);
 

@@ -24,6 +24,7 @@ void add_pack_command(CLI::App& root) {
   struct Options {
     std::string input, output, keep_prm;
     double target = 0, max_error = 0, grid = 0, grid_fraction = 0, tau = 0.2, lambda = 0, step_scale = 0;
+    double boundary_simplification = pipeline::PackOptions{}.boundary_simplification;
     int bits = 0, sweeps = 4, effort = pipeline::kDefaultEffort;
     std::string max_version = "1.4", mode = "auto";
     size_t samples = 0;
@@ -106,6 +107,11 @@ void add_pack_command(CLI::App& root) {
   cmd->add_flag("--fill-holes", opt->fill_holes,
                 "Close every boundary loop with a triangle fan around its centroid before remeshing (the paper's bunny "
                 "protocol, bench/table1). Default: the output keeps the input's boundary loops");
+  cmd->add_option("--boundary-simplification", opt->boundary_simplification,
+                  "Open surfaces, with --target-error: before remeshing, thin out each boundary loop (collapse boundary "
+                  "vertices along it) while it stays within this fraction of the target error of the input's loop; 0: "
+                  "keep every boundary vertex")
+      ->check(CLI::Range(0.0, 1.0));
   cmd->add_flag("--json", opt->json, kJsonFlagHelp);
   cmd->callback([opt] {
     if (is_prm_stream_path(opt->input) && is_gltf_file_path(opt->output))
@@ -137,6 +143,7 @@ void add_pack_command(CLI::App& root) {
     if (po.mode == pipeline::PackMode::general && opt->fill_holes)
       throw CLI::ValidationError("pack", "--fill-holes closes the input's holes, which --mode general keeps");
     po.fill_holes = opt->fill_holes;
+    po.boundary_simplification = opt->boundary_simplification;
     if (is_gltf_file_path(opt->output)) return run_gltf_pack(opt->input, opt->output, po, opt->fallback, opt->json);
     note_gltf_to_prm(opt->input);
     ReadReport read;
@@ -155,6 +162,10 @@ void add_pack_command(CLI::App& root) {
     if (read.degenerate_dropped) changes.push_back(std::to_string(read.degenerate_dropped) + " face(s) with a repeated index dropped on reading");
     if (read.vertices_welded) changes.push_back(std::to_string(read.vertices_welded) + " coincident vertices welded on reading");
     for (const std::string& c : repair_summary(r.repair)) changes.push_back(c);
+    if (r.boundary_vertices_removed)
+      changes.push_back(std::to_string(r.boundary_vertices_removed) + " boundary vertices thinned out of the input's "
+                        "loops before remeshing (--boundary-simplification: within " +
+                        std::to_string(opt->boundary_simplification) + " x the target of the input's loops)");
     if (const size_t moved = r.remesh.prm.stats.quantized_moves)
       changes.push_back(std::to_string(moved) + " remeshed vertices moved by up to two quantization steps so that no "
                         "triangle loses its area");
@@ -226,6 +237,7 @@ void add_pack_command(CLI::App& root) {
       j["boundary_loops_in"] = r.boundary_loops_in;
       j["boundary_loops_out"] = r.boundary_loops_out;
       j["boundary_fallback"] = r.boundary_fallback;
+      j["boundary_vertices_removed"] = r.boundary_vertices_removed;
       j["changes"] = changes;
       j["notes"] = notes;
       j["bits"] = r.bits;

@@ -1,5 +1,6 @@
-// prm remesh IN -o OUT.ply (--grid G | --grid-fraction F | --target-error E) [--tau T] [--bits B] [--json]:
-// the piecewise regular mesh of paper §2, with its lattice labels (docs/ARCHITECTURE.md "The PRM file").
+// prm remesh IN -o OUT.ply (--grid G | --grid-fraction F | --target-error E) [--tau T] [--bits B] [--fill-holes]
+// [--json]: the piecewise regular mesh of paper §2, with its lattice labels (docs/ARCHITECTURE.md "The PRM file").
+// Like pack, it keeps the input's boundary loops (issue 22) unless --fill-holes closes them first.
 #include <chrono>
 #include <optional>
 #include <cstdio>
@@ -22,12 +23,15 @@ void add_remesh_command(CLI::App& root) {
     std::string input, output;
     double grid = 0, grid_fraction = 0, target = 0, tau = 0.2;
     int bits = 12;
-    bool json = false, naive = false, no_fit = false;
+    bool json = false, naive = false, no_fit = false, fill_holes = false;
     double error_flip_weight = remesh::kDefaultErrorFlipWeight;
     size_t samples = 0;  // Metro's default density (ten per face): what `prm compare` and the tests measure
   };
   auto opt = std::make_shared<Options>();
-  cmd->add_option("input", opt->input, "Mesh file (holes are closed first; must be a 2-manifold)")->required();
+  cmd->add_option("input", opt->input,
+                  "Mesh file: an oriented 2-manifold, open or closed (pinches and degenerate faces are repaired first; "
+                  "its boundary loops stay open unless --fill-holes)")
+      ->required();
   cmd->add_option("-o,--output", opt->output, "Output PRM file (binary PLY with lattice labels)")->required();
   auto* g = cmd->add_option("--grid", opt->grid, "Grid size in model units")->check(CLI::PositiveNumber);
   auto* gf = cmd->add_option("--grid-fraction", opt->grid_fraction, "Grid size as a fraction of the bounding-box diagonal")
@@ -43,6 +47,9 @@ void add_remesh_command(CLI::App& root) {
   cmd->add_option("--samples", opt->samples, "Metro samples per surface for the error search (default 0: Metro's ten per face; fewer samples over-weight the vertices and bias the RMS up)");
   cmd->add_flag("--naive-reliefs", opt->naive, "Reliefs by closest axis only (for comparison)");
   add_remesher_options(cmd, opt->error_flip_weight, opt->no_fit);
+  cmd->add_flag("--fill-holes", opt->fill_holes,
+                "Close every boundary loop with a fan before remeshing (the paper's protocol); by default the loops "
+                "are kept and the output has the same boundary loops as the input (issue 22)");
   cmd->add_flag("--json", opt->json, kJsonFlagHelp);
   cmd->callback([opt] {
     if (opt->grid <= 0 && opt->grid_fraction <= 0 && opt->target <= 0)
@@ -52,7 +59,13 @@ void add_remesh_command(CLI::App& root) {
     RepairReport rep;
     check_remesh_range(input);
     const MeshReport check = validate_mesh(input);
-    if (!check.ready_for_remesh()) input = repair_mesh(input, &rep);
+    // As in pack: the remesher takes a consistently oriented 2-manifold, open or closed.
+    const bool ready = check.clean() && check.manifold() && check.oriented() && (check.closed() || !opt->fill_holes);
+    RepairOptions repair_options;
+    repair_options.fill_holes = opt->fill_holes;
+    if (!ready) input = repair_mesh(input, &rep, repair_options);  // throws InputError when it cannot
+    // The input's boundary loops after the pinch splits, before any hole is filled.
+    const size_t loops_in = ready ? check.boundary_loops : validate_mesh(input).boundary_loops + rep.holes_filled;
     remesh::RemeshOptions ro;
     ro.bits = opt->bits;
     ro.reliefs.tau = opt->tau;
@@ -88,6 +101,7 @@ void add_remesh_command(CLI::App& root) {
     const MetroReference& reference = *held;
     const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const auto& s = res.prm.stats;
+    const size_t loops_out = validate_mesh(res.prm.mesh).boundary_loops;
     const double regular = s.faces ? static_cast<double>(s.regular_faces) / s.faces : 0;
     if (opt->json) {
       nlohmann::json search = nlohmann::json::array();
@@ -100,6 +114,7 @@ void add_remesh_command(CLI::App& root) {
       report.distance(res.error.rms, res.error.max, reference.diagonal());
       report.json().update(nlohmann::json{
           {"holes_closed", rep.holes_filled},
+          {"boundary_loops_in", loops_in}, {"boundary_loops_out", loops_out},
           {"n_o", input.positions.size()}, {"n_r", s.vertices},
           {"grid_steps", res.prm.lattice.A}, {"grid_size", static_cast<double>(res.prm.lattice.A) * res.prm.frame.step},
           {"grid_fraction", static_cast<double>(res.prm.lattice.A) * res.prm.frame.step / reference.diagonal()},
@@ -118,7 +133,9 @@ void add_remesh_command(CLI::App& root) {
       return;
     }
     std::printf("%s -> %s\n", opt->input.c_str(), opt->output.c_str());
-    if (rep.holes_filled) std::printf("  closed %zu hole(s) first\n", rep.holes_filled);
+    std::printf("  boundary loops: %zu in, %zu out", loops_in, loops_out);
+    if (rep.holes_filled) std::printf(" (%zu filled: --fill-holes)", rep.holes_filled);
+    std::printf("\n");
     std::printf("  n_o %zu -> n_r %zu vertices (%.2f), %zu faces, %.1f%% regular, %zu reliefs (tau %g)\n",
                 input.positions.size(), s.vertices, static_cast<double>(s.vertices) / input.positions.size(), s.faces,
                 100 * regular, res.reliefs, opt->tau);

@@ -99,6 +99,10 @@ void run_gltf_pack(const std::string& input, const std::string& output, const pi
         p["distance"] = {{"rms_rel", r.rms}, {"max_rel", r.max}, {"rms", r.rms * r.diagonal},
                          {"max", r.max * r.diagonal}, {"diagonal", r.diagonal}};  // docs/cli-json.md "distance"
         p["repaired"] = r.repaired;
+        p["boundary_loops_in"] = r.boundary_loops_in;
+        p["boundary_loops_out"] = r.boundary_loops_out;
+        p["holes_closed"] = r.holes_filled;
+        p["boundary_fallback"] = r.boundary_fallback;
         p["mode"] = r.mode;
         p["mode_reason"] = r.mode_reason;
       } else {
@@ -133,10 +137,16 @@ void run_gltf_pack(const std::string& input, const std::string& output, const pi
   for (const auto& r : report.primitives) {
     if (r.compressed) {
       std::printf("  %s: %zu -> %zu vertices, %zu -> %zu triangles, %zu -> %zu bytes%s%s, RMS %.3e max %.3e of the "
-                  "diagonal, %d bits%s, mode %s (%s)\n",
+                  "diagonal, %d bits%s, boundary loops %zu in, %zu out%s, mode %s (%s)\n",
                   label(r).c_str(), r.vertices_in, r.vertices_out, r.triangles_in, r.triangles_out, r.bytes_in,
                   r.bytes_out, r.input_codec.empty() ? "" : " (input ", r.input_codec.empty() ? "" : (r.input_codec + ")").c_str(),
-                  r.rms, r.max, r.bits, r.repaired ? ", repaired first" : "", r.mode.c_str(), r.mode_reason.c_str());
+                  r.rms, r.max, r.bits, r.repaired ? ", repaired first" : "", r.boundary_loops_in,
+                  r.boundary_loops_out,
+                  r.holes_filled ? (" (" + std::to_string(r.holes_filled) +
+                                    (r.boundary_fallback ? " filled: the remesher could not keep them)" : " filled: --fill-holes)"))
+                                       .c_str()
+                                 : "",
+                  r.mode.c_str(), r.mode_reason.c_str());
     } else {
       std::printf("  %s: kept as it was (%zu vertices, %zu bytes): %s\n", label(r).c_str(), r.vertices_in, r.bytes_out,
                   r.reason.c_str());

@@ -35,6 +35,12 @@ struct RepairOptions {
 // options.fill_holes the loops stay open (and the result is closed only if the input was).
 Mesh repair_mesh(const Mesh& mesh, RepairReport* report = nullptr, const RepairOptions& options = {});
 
+// The pinch split of repair_mesh alone: each vertex whose faces form several fans (joined across edges with two
+// faces) gets one copy per extra fan, at its position and with its vertex property values; the faces of that fan
+// take the copy. Requires no edge with three or more faces. Returns the number of copies made
+// (RepairReport::pinched_vertices_split). The geometry is unchanged.
+size_t split_pinched_vertices(Mesh& m);
+
 // What a repair changed, one phrase per kind of change it made ("2 duplicate face(s) removed", "5 hole(s) closed
 // with 223 triangles"); empty when it changed nothing. (What it left as it was is in report.notes.)
 std::vector<std::string> repair_summary(const RepairReport& report);

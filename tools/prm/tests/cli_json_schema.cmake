@@ -50,7 +50,7 @@ run_json(reliefs KEYS input output ${counts} seconds ARGS reliefs "${DATA}/cube_
 run_json(remesh KEYS input output ${counts} distance.rms_rel distance.max_rel seconds
          ARGS remesh "${DATA}/cube_quads.obj" -o "${WORK}/cube_prm.ply" --grid-fraction 0.1)
 run_json(pack KEYS input output ${counts} bytes.total bits_per_vertex.total bytes.connectivity distance.rms_rel
-         distance.max_rel seconds n_o n_r boundary_loops_in boundary_loops_out holes_closed ARGS pack "${DATA}/cube_quads.obj" -o "${WORK}/cube.prm" --grid-fraction 0.1)
+         distance.max_rel seconds n_o n_r boundary_loops_in boundary_loops_out holes_closed boundary_vertices_removed ARGS pack "${DATA}/cube_quads.obj" -o "${WORK}/cube.prm" --grid-fraction 0.1)
 # --mode (issue 22): auto keeps the smaller stream and says why; the 8-vertex cube is coded as it is.
 run_json(pack KEYS mode mode_requested mode_reason candidates.prm.bytes candidates.general.bytes
          candidates.general.bits n_r_over_n_o distance.rms_rel
@@ -66,6 +66,24 @@ run_json(pack KEYS mode candidates.prm.made candidates.general.bits
 string(JSON made GET "${last_json}" candidates prm made)
 if(made)
   message(FATAL_ERROR "prm pack --mode general made a piecewise regular candidate:\n${last_json}")
+endif()
+# remesh keeps an open input's boundary loops (issue 22), and closes them with --fill-holes.
+run_json(remesh KEYS boundary_loops_in boundary_loops_out holes_closed
+         ARGS remesh "${DATA}/open_box.off" -o "${WORK}/open_box_prm.ply" --grid-fraction 0.1)
+string(JSON loops_in GET "${last_json}" boundary_loops_in)
+string(JSON loops_out GET "${last_json}" boundary_loops_out)
+string(JSON closed GET "${last_json}" holes_closed)
+if(NOT loops_in EQUAL 1 OR NOT loops_out EQUAL 1 OR NOT closed EQUAL 0)
+  message(FATAL_ERROR "prm remesh open_box.off: loops ${loops_in} in, ${loops_out} out, ${closed} closed; expected "
+                      "1, 1, 0:\n${last_json}")
+endif()
+run_json(remesh KEYS boundary_loops_in boundary_loops_out holes_closed
+         ARGS remesh "${DATA}/open_box.off" -o "${WORK}/open_box_filled_prm.ply" --grid-fraction 0.1 --fill-holes)
+string(JSON loops_out GET "${last_json}" boundary_loops_out)
+string(JSON closed GET "${last_json}" holes_closed)
+if(NOT loops_out EQUAL 0 OR NOT closed EQUAL 1)
+  message(FATAL_ERROR "prm remesh open_box.off --fill-holes: loops ${loops_out} out, ${closed} closed; expected "
+                      "0, 1:\n${last_json}")
 endif()
 run_json(render KEYS input output ${counts} seconds ARGS render "${WORK}/tet.prm" -o "${WORK}/tet.png" --size 64x64)
 

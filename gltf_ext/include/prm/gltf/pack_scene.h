@@ -33,6 +33,11 @@ struct PrimitiveReport {
   double diagonal = 0;       // input primitive's bounding-box diagonal (model units)
   int bits = 0;
   bool repaired = false;     // holes or defects were fixed before remeshing
+  // Boundary loops (issue 22, as `prm pack` reports them): of the input primitive (after pinch splits), of the
+  // stream, and how many were filled (PackOptions::fill_holes); boundary_fallback: filled because the remesher could
+  // not keep them (PackResult::boundary_fallback).
+  size_t boundary_loops_in = 0, boundary_loops_out = 0, holes_filled = 0;
+  bool boundary_fallback = false;
   std::string mode;          // the stream pipeline::pack kept: "prm" or "general" (PackOptions::mode)
   std::string mode_reason;   // why (PackResult::mode_reason)
 };

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -92,6 +93,10 @@ struct PackOptions {
   // False: the output keeps the input's boundary loops (the remesher treats the mesh boundary as a seam with no
   // neighbour and never moves its vertices).
   bool fill_holes = false;
+  // Without fill_holes, with a target error: before remeshing, each boundary loop is thinned out (a 1-D
+  // simplification, simplify_boundary) within this fraction of the target error (times the diagonal); 0: the
+  // boundary vertices are all kept. The error is still measured against the input as it came.
+  double boundary_simplification = 0;
 };
 
 // What one effort level does (effort_plan()).
@@ -129,6 +134,7 @@ struct PackResult {
   bool repaired = false;        // the input had pinches or degenerate faces (or holes, with fill_holes)
   size_t boundary_loops_in = 0;   // of the input after the repair's pinch splits, before any hole is filled
   size_t boundary_loops_out = 0;  // of the piecewise regular mesh (the stream's; RepairReport::holes_filled: filled)
+  size_t boundary_vertices_removed = 0;  // by PackOptions::boundary_simplification, before remeshing
   // Without fill_holes: the remesher could not keep the boundary (an invariant broke, std::logic_error) and pack
   // filled the holes instead, with a note in repair.notes saying so.
   bool boundary_fallback = false;
@@ -167,5 +173,15 @@ struct PackResult {
 // mode general, prm::InputError when the general path refuses the input and TargetNotReached when no bit depth meets
 // the target; with mode automatic, the PRM's error (naming the general path's too) when neither can be made.
 PackResult pack(const Mesh& input, const PackOptions& options);
+
+namespace detail {
+// pack's fallback on an open surface with the piecewise regular attempt given: `attempt(input, options)` (pack's own
+// remesh-and-encode) keeps the boundary loops unless options.fill_holes; if it throws std::logic_error (a broken
+// remesher invariant; std::invalid_argument is rethrown, as is any error on a closed input), the attempt is made
+// again with fill_holes, and the result says so (PackResult::boundary_fallback, a note in repair.notes). A seam for
+// the tests: no known mesh makes the remesher fail on its boundary.
+using PrmAttempt = std::function<PackResult(const Mesh&, const PackOptions&)>;
+PackResult pack_keeping_boundary_or_filling(const Mesh& input, const PackOptions& options, const PrmAttempt& attempt);
+}  // namespace detail
 
 }  // namespace prm::pipeline

@@ -23,6 +23,7 @@ struct GeneralPack {
   int bits = 0;
   double rms = 0, max = 0;  // symmetric Metro distances of the decoded mesh to the input, fractions of the diagonal
   size_t zero_area = 0;     // decoded triangles of zero area (count_zero_area_triangles)
+  double boundary_rms = 0;  // RMS distance of the decoded boundary vertices to the input's boundary, of the diagonal
   struct Trial {
     int bits = 0;
     size_t bytes = 0;
@@ -36,7 +37,8 @@ struct GeneralPack {
 // reference) of at most `target` (bisection: the quantization error falls as the bit depth grows); `target` <= 0
 // with bits = 0: 12 bits. Like every stream of pack (issue 17), the decoded mesh must have no triangle of zero area:
 // a bit depth whose quantization collapses one does not meet the target either (an input with zero-area triangles
-// of its own is left to the remesher). Throws prm::InputError with the codec's message when the general path refuses
+// of its own is left to the remesher). An open input's boundary (issue 22) must lie within the target too: the RMS
+// distance of the decoded boundary vertices to the input's boundary polyline at most `target`. Throws prm::InputError with the codec's message when the general path refuses
 // the mesh (non-manifold, ...), remesh::TargetNotReached when no bit depth meets the target. max_minor: the newest
 // format 1.N the stream may need (PackOptions::max_minor; below 3, no CLERS seam context, §6.5.2). max_target > 0:
 // the decoded mesh's maximum (Hausdorff) distance must be at most that too (PackOptions::max_error), also alone.
