@@ -25,7 +25,7 @@ void add_pack_command(CLI::App& root) {
     std::string input, output, keep_prm;
     double target = 0, max_error = 0, grid = 0, grid_fraction = 0, tau = 0.2, lambda = 0, step_scale = 0;
     int bits = 0, sweeps = 4, effort = pipeline::kDefaultEffort;
-    std::string max_version = "1.4", mode = "auto";
+    std::string max_version = "1.5", mode = "auto";
     size_t samples = 0;
     bool json = false, no_fit = false, round_heights = false, fallback = false, fill_holes = false, refine = false;
     double error_flip_weight = remesh::kDefaultErrorFlipWeight;
@@ -97,9 +97,10 @@ void add_pack_command(CLI::App& root) {
   cmd->add_flag("--round-heights", opt->round_heights,
                 "Round every height to the nearest step (no rate-distortion choice; for comparison)");
   cmd->add_option("--max-version", opt->max_version,
-                  "Newest format the stream may need, for older decoders: 1.4 (default), 1.3 (no patch contexts, spec "
+                  "Newest format the stream may need, for older decoders: 1.5 (default), 1.4 (one grid size for every "
+                  "patch, spec §8.4.2), 1.3 (no patch contexts either, "
                   "§8.4.1), 1.2 (no CLERS seam context either, §6.5.2)")
-      ->check(CLI::IsMember({"1.2", "1.3", "1.4"}));
+      ->check(CLI::IsMember({"1.2", "1.3", "1.4", "1.5"}));
   cmd->add_flag("--fallback", opt->fallback,
                 "With a .glb/.gltf output: also store the decoded geometry uncompressed, so that loaders without "
                 "PRM_mesh_compression show it (the extension is then not required)");

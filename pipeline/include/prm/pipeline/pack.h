@@ -85,7 +85,7 @@ struct PackOptions {
   double height_lambda = 0;
   int height_sweeps = 4;  // codec::PrmOptions::height_sweeps: the choice refined over all heights (0: one by one)
   // The newest format 1.N the stream may need (encode_any_mesh): 4, or 3 (no patch contexts), or 2 (no seam context).
-  int max_minor = codec::kFormatMinorPatchContexts;
+  int max_minor = codec::kFormatMinorPatchGrids;
   int effort = kDefaultEffort;  // kMinEffort..kMaxEffort (see above)
   // Close every boundary loop with a fan before remeshing (RepairOptions::fill_holes; the paper's bunny protocol).
   // The output is then closed: on an open input, mode automatic is prm and mode general std::invalid_argument.
