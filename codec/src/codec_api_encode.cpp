@@ -115,7 +115,7 @@ Status encode_impl(const uint32_t* q, size_t nv, const uint32_t* tris, size_t nt
   int depth_used = -1, overlap_used = -1;
   if (prm) {
     grids = {prm->grid};
-    grids.insert(grids.end(), prm->extra_grids.begin(), prm->extra_grids.end());
+    if (prm->patch_grids) grids.insert(grids.end(), prm->extra_grids.begin(), prm->extra_grids.end());
     classify_triangles(mesh, cq, grids, tri_axis, tri_grid);
     // §8.4.2 The table holds the extra grids in use, renumbered in their order.
     std::vector<uint8_t> used(grids.size(), 0), renumber(grids.size(), 0);

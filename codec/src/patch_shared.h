@@ -22,11 +22,10 @@ namespace prm::codec {
 constexpr int kMaxHeightDepth = 6;  // §9.4 Height_Depth 0..6: difference patches
 constexpr int kHeightDepthPredicted = kLinearPredictionDepth;  // §9.7 Height_Depth 7: linear prediction (format 1.2)
 constexpr int kGridBits = 21;       // §8.4 Grid_Size: 21 direct bits
-// §8.4.2 The grid table (Flags bit 4, format 1.5): Extra_Grid_Count in 3 direct bits, 1..7 extra grid sizes after
-// Grid_Size, so a patch's Grid_Index (a Symbol8) is below kMaxPatchGrids.
+// §8.4.2 The grid table (Flags bit 4, format 1.5): Extra_Grid_Count in 3 direct bits, 1..kMaxExtraGrids (prm/lattice.h)
+// extra grid sizes after Grid_Size; a patch's Grid_Index is a Symbol8.
 constexpr int kExtraGridCountBits = 3;
-constexpr int kMaxExtraGrids = 7;
-constexpr int kMaxPatchGrids = kMaxExtraGrids + 1;
+static_assert(kMaxExtraGrids == (1 << kExtraGridCountBits) - 1, "Extra_Grid_Count's 3 bits hold 1..7");
 
 struct HeightModels {
   SignedIntModel final_[kMaxHeightDepth + 1];

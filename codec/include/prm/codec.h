@@ -161,6 +161,9 @@ struct PrmOptions {
   // extra_grids... it fits (§7.1). The stream's grid table holds the extra grids its regular triangles use; none
   // used (or none given): no table, the stream of the single grid. Empty: one grid for the whole mesh.
   std::vector<int64_t> extra_grids;
+  // false: extra_grids are not used (a stream of one grid, format 1.4 or older: the triangles on the other grids are
+  // coded as irregular).
+  bool patch_grids = true;
   // §9.4 The heights' coding: 0..6 levels of difference patches (the paper's), 7 linear prediction (§9.7), -1 the
   // encoder tries them all and keeps the smallest.
   int height_depth = -1;
