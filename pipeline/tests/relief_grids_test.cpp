@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <array>
 #include <cstdio>
 #include <map>
@@ -13,7 +14,10 @@
 #include "prm/mesh_io.h"
 #include "prm/mesh_repair.h"
 #include "prm/mesh_validate.h"
+#include "prm/vec3.h"
 #include "prm/pipeline/codec_bridge.h"
+#include "prm/pipeline/pack.h"
+#include "prm/remesh/relief_grids.h"
 #include "prm/remesh/remesh.h"
 
 namespace prm {
@@ -119,6 +123,54 @@ void check(const std::string& path, const std::string& name) {
 
 TEST(ReliefGrids, RealMeshesOnSeveralGrids) {
   for (const char* name : {"feline_5k.obj", "horse.ply"}) check(std::string(PRM_SHARED_MESHES) + "/" + name, name);
+}
+
+// The allocation's model (remesh/relief_grids.h) on a real mesh: the reliefs' areas add up to the surface's, the
+// more detailed relief never gets the coarser grid, and the scales are at most kMaxReliefGrids levels of 2^(k/4).
+TEST(ReliefGrids, AllocationFollowsTheDetail) {
+  const Mesh input = load_closed(std::string(PRM_SHARED_MESHES) + "/feline_5k.obj");
+  const remesh::ReliefLayout layout = remesh::build_reliefs(input, {});
+  const remesh::ReliefDetail detail = remesh::measure_relief_detail(input, layout);
+  ASSERT_EQ(detail.area.size(), layout.reliefs.size());
+  double total = 0, surface = 0;
+  for (double a : detail.area) total += a;
+  for (const Tri& t : input.triangles) surface += triangle_area(input.positions[t[0]], input.positions[t[1]], input.positions[t[2]]);
+  EXPECT_NEAR(total, surface, 1e-9 * surface);
+  const std::vector<double> scale = remesh::allocate_relief_grid_scales(detail);
+  ASSERT_EQ(scale.size(), detail.area.size());
+  std::set<double> levels(scale.begin(), scale.end());
+  EXPECT_LE(levels.size(), remesh::kMaxReliefGrids);
+  EXPECT_GE(levels.size(), 2u);  // feline_5k's reliefs differ in detail
+  for (size_t r = 0; r < scale.size(); ++r) {
+    const double k = std::log2(scale[r]) * 4;
+    EXPECT_NEAR(k, std::round(k), 1e-9);
+    EXPECT_GE(k, -3 - 1e-9);
+    EXPECT_LE(k, 4 + 1e-9);
+    for (size_t q = 0; q < scale.size(); ++q)
+      if (detail.curvature2[r] > detail.curvature2[q]) EXPECT_LE(scale[r], scale[q]) << r << " " << q;
+  }
+}
+
+// pack --adaptive: a format 1.5 stream of several grid sizes meeting the target and decoding exactly; with
+// --max-version 1.4 the option is ignored and the stream is the uniform one, byte for byte.
+TEST(ReliefGrids, PackAdaptive) {
+  const Mesh input = read_mesh(std::string(PRM_SHARED_MESHES) + "/feline_5k.obj");
+  pipeline::PackOptions o;
+  o.target_error = 1e-3;
+  o.adaptive = true;
+  const pipeline::PackResult r = pipeline::pack(input, o);
+  EXPECT_GE(r.report.grid_sizes, 2u);
+  EXPECT_EQ(r.stream[5], codec::kFormatMinorPatchGrids);
+  EXPECT_LE(r.remesh.error.rms, 1e-3);
+  expect_exact(r.remesh.prm, r.stream, r.report, "feline_5k adaptive");
+  pipeline::PackOptions u = o;
+  u.adaptive = false;
+  u.max_minor = codec::kFormatMinorPatchContexts;
+  pipeline::PackOptions old = o;
+  old.max_minor = codec::kFormatMinorPatchContexts;
+  const pipeline::PackResult a14 = pipeline::pack(input, old), u14 = pipeline::pack(input, u);
+  EXPECT_EQ(a14.report.grid_sizes, 1u);
+  EXPECT_EQ(a14.stream, u14.stream);
 }
 
 }  // namespace

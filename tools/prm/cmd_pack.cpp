@@ -27,7 +27,8 @@ void add_pack_command(CLI::App& root) {
     int bits = 0, sweeps = 4, effort = pipeline::kDefaultEffort;
     std::string max_version = "1.5", mode = "auto";
     size_t samples = 0;
-    bool json = false, no_fit = false, round_heights = false, fallback = false, fill_holes = false, refine = false;
+    bool json = false, no_fit = false, round_heights = false, fallback = false, fill_holes = false, refine = false,
+         adaptive = false;
     double error_flip_weight = remesh::kDefaultErrorFlipWeight;
   };
   auto opt = std::make_shared<Options>();
@@ -94,6 +95,10 @@ void add_pack_command(CLI::App& root) {
                     std::to_string(pipeline::kRefineShare * pipeline::kDefaultMaxErrorPerTarget).substr(0, 3) +
                     " x --target-error from the input (thin tips the grid cuts off; bench/README.md 'Worst-case "
                     "error': max halved on the horse, +3% bytes, but +14% bytes for nothing on CGAL's bunny00)");
+  cmd->add_flag("--adaptive", opt->adaptive,
+                "A grid size per relief (format 1.5, spec §8.4.2): each relief's grid scaled by its measured curvature "
+                "(equal slope, remesh/relief_grids.h), the search scaling them together to the target; ignored with "
+                "--max-version below 1.5");
   cmd->add_flag("--round-heights", opt->round_heights,
                 "Round every height to the nearest step (no rate-distortion choice; for comparison)");
   cmd->add_option("--max-version", opt->max_version,
@@ -128,6 +133,7 @@ void add_pack_command(CLI::App& root) {
     po.error_flip_weight = opt->error_flip_weight;
     po.height_lambda = opt->lambda;
     po.optimize_heights = !opt->round_heights;
+    po.adaptive = opt->adaptive;
     po.height_sweeps = opt->sweeps;
     po.max_minor = opt->max_version[2] - '0';
     po.effort = opt->effort;
@@ -237,6 +243,8 @@ void add_pack_command(CLI::App& root) {
       if (!general) {
         j["grid_size"] = g;
         j["grid_steps"] = r.remesh.prm.lattice.A;
+        j["grid_sizes"] = rep.grid_sizes;  // §8.4.2: 1, or 2..8 with --adaptive
+        j["adaptive"] = opt->adaptive;
         j["tau"] = opt->tau;
         j["step"] = r.remesh.prm.frame.step;
         j["remesh_rounds"] = r.remesh_rounds;

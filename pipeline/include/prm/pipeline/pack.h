@@ -92,6 +92,10 @@ struct PackOptions {
   // False: the output keeps the input's boundary loops (the remesher treats the mesh boundary as a seam with no
   // neighbour and never moves its vertices).
   bool fill_holes = false;
+  // A grid size per relief (issue 23, spec §8.4.2, format 1.5; remesh/relief_grids.h): each relief's grid scaled by
+  // its measured detail (equal slope), the search scaling them together to the target. Needs max_minor >= 5
+  // (otherwise ignored: one grid). false: one grid for the whole surface.
+  bool adaptive = false;
 };
 
 // What one effort level does (effort_plan()).
