@@ -375,8 +375,11 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
   const remesh::ReliefLayout layout = remesh::build_reliefs(source, relief_options);
   // Issue 23: a grid scale per relief from its measured detail (format 1.5 only).
   std::vector<double> relief_grid_scale;
-  if (options.adaptive && options.max_minor >= codec::kFormatMinorPatchGrids)
-    relief_grid_scale = remesh::allocate_relief_grid_scales(remesh::measure_relief_detail(source, layout));
+  if (options.adaptive && options.max_minor >= codec::kFormatMinorPatchGrids) {
+    remesh::ReliefGridOptions go;
+    go.exponent = options.adaptive_exponent;
+    relief_grid_scale = remesh::allocate_relief_grid_scales(remesh::measure_relief_detail(source, layout), go);
+  }
   const SearchContext ctx{source, layout, sparse ? *sparse_reference : reference, reference, plan, relief_grid_scale};
   const SearchContext full_ctx{source, layout, reference, reference, plan, relief_grid_scale};
   size_t rounds = 0;

@@ -29,6 +29,7 @@ void add_pack_command(CLI::App& root) {
     size_t samples = 0;
     bool json = false, no_fit = false, round_heights = false, fallback = false, fill_holes = false, refine = false,
          adaptive = false;
+    double adaptive_exponent = 1.0 / 6.0;
     double error_flip_weight = remesh::kDefaultErrorFlipWeight;
   };
   auto opt = std::make_shared<Options>();
@@ -99,6 +100,10 @@ void add_pack_command(CLI::App& root) {
                 "A grid size per relief (format 1.5, spec §8.4.2): each relief's grid scaled by its measured curvature "
                 "(equal slope, remesh/relief_grids.h), the search scaling them together to the target; ignored with "
                 "--max-version below 1.5");
+  cmd->add_option("--adaptive-exponent", opt->adaptive_exponent,
+                  "With --adaptive: a relief's grid goes as its mean squared curvature to the minus this power (default "
+                  "1/6: RMS error ~ g^2, bytes ~ g^-2)")
+      ->check(CLI::Range(0.01, 1.0));
   cmd->add_flag("--round-heights", opt->round_heights,
                 "Round every height to the nearest step (no rate-distortion choice; for comparison)");
   cmd->add_option("--max-version", opt->max_version,
@@ -134,6 +139,7 @@ void add_pack_command(CLI::App& root) {
     po.height_lambda = opt->lambda;
     po.optimize_heights = !opt->round_heights;
     po.adaptive = opt->adaptive;
+    po.adaptive_exponent = opt->adaptive_exponent;
     po.height_sweeps = opt->sweeps;
     po.max_minor = opt->max_version[2] - '0';
     po.effort = opt->effort;

@@ -96,6 +96,7 @@ struct PackOptions {
   // its measured detail (equal slope), the search scaling them together to the target. Needs max_minor >= 5
   // (otherwise ignored: one grid). false: one grid for the whole surface.
   bool adaptive = false;
+  double adaptive_exponent = 1.0 / 6.0;  // remesh::ReliefGridOptions::exponent
 };
 
 // What one effort level does (effort_plan()).
