@@ -151,6 +151,28 @@ std::vector<uint8_t> pillow_stream(int r, int perturb, int depth, uint32_t seed 
   return encode_prm(m.q.data(), m.nv(), m.tris.data(), m.nt(), f, o).value;
 }
 
+// Format 1.5 (§8.4.2): two pillows side by side, the first on grid size 8 (Grid_Size), the second on grid size 6
+// (Extra_Grid[1]) moved along x by 30 of its lattice steps (so its vertices stay on its lattice), in one stream.
+std::vector<uint8_t> two_grid_stream(int depth) {
+  std::vector<std::array<int, 2>> moved = {{1, -2}, {-3, 2}};
+  const QuantizedMesh a = lattice_pillow(6, 8, bumpy_top, bumpy_bottom, nullptr, moved);
+  const QuantizedMesh b = lattice_pillow(5, 6, bumpy_top, bumpy_bottom, nullptr, moved);
+  QuantizedMesh m = a;
+  const uint32_t base = static_cast<uint32_t>(a.nv());
+  for (size_t v = 0; v < b.nv(); ++v) m.q.insert(m.q.end(), {b.q[3 * v] + 6 * 30, b.q[3 * v + 1], b.q[3 * v + 2]});
+  for (uint32_t t : b.tris) m.tris.push_back(t + base);
+  Frame f;
+  f.bits = 12;
+  f.origin = {0, 0, 0};
+  f.step = 1;
+  PrmOptions o;
+  o.grid = 8;
+  o.extra_grids = {6};
+  o.height_depth = depth;
+  o.seam_context = 0;
+  return encode_prm(m.q.data(), m.nv(), m.tris.data(), m.nt(), f, o).value;
+}
+
 void fix_crc(std::vector<uint8_t>& s) {  // CRC-32 (spec 3.5), bitwise
   uint32_t c = 0xFFFFFFFFu;
   for (size_t i = 0; i + 4 < s.size(); ++i) {
@@ -304,18 +326,25 @@ std::string prm_features(const std::vector<uint8_t>& stream) {
   if (!dec.ok() || !patches) return "";
   RangeDecoder rc;
   rc.init(stream.data() + patches->offset, patches->size);
-  const int64_t a = rc.decode_direct(21);  // §8.4 Grid_Size, Height_Depth
+  const int64_t a0 = rc.decode_direct(21);  // §8.4 Grid_Size, Height_Depth
   const int depth = static_cast<int>(rc.decode_direct(3));
+  std::vector<int64_t> grids = {a0};  // §8.4.2 the grid table (Flags bit 4)
+  if (info.value.flags & 0x10) {
+    const int n = static_cast<int>(rc.decode_direct(3));
+    for (int k = 0; k < n; ++k) grids.push_back(rc.decode_direct(21));
+  }
   std::string out;
   // §7.1 steps 1-3 on the decoded mesh (closed: no dummy vertices).
+  const DecodedMesh& m = dec.value;
+  const size_t nt = m.num_triangles();
+  std::vector<int> axis(nt, -1);
+  for (size_t g = 0; g < grids.size(); ++g) {
   // §8.1 B = floor(A / 2), C = floor((isqrt(3 A^2) + 1) / 2).
+  const int64_t a = grids[g];
   int64_t root = static_cast<int64_t>(std::sqrt(3.0 * static_cast<double>(a) * static_cast<double>(a)));
   while (root * root > 3 * a * a) --root;
   while ((root + 1) * (root + 1) <= 3 * a * a) ++root;
   const int64_t b = a / 2, cc = (root + 1) / 2;
-  const DecodedMesh& m = dec.value;
-  const size_t nt = m.num_triangles();
-  std::vector<int> axis(nt, -1);
   for (size_t t = 0; t < nt; ++t)
     for (int k = 0; k < 3 && axis[t] < 0; ++k) {
       int64_t p[3][2];
@@ -336,8 +365,9 @@ std::string prm_features(const std::vector<uint8_t>& stream) {
         steps = steps && dir;
       }
       const int64_t x = (p[1][0] - p[0][0]) * (p[2][1] - p[0][1]) - (p[1][1] - p[0][1]) * (p[2][0] - p[0][0]);
-      if (steps && (x == 1 || x == -1)) axis[t] = 2 * k + (x == 1 ? 0 : 1);
+      if (steps && (x == 1 || x == -1)) axis[t] = 6 * static_cast<int>(g) + 2 * k + (x == 1 ? 0 : 1);
     }
+  }
   std::map<std::pair<uint32_t, uint32_t>, std::vector<size_t>> edges;
   for (size_t t = 0; t < nt; ++t)
     for (int r = 0; r < 3; ++r) {
@@ -351,8 +381,13 @@ std::string prm_features(const std::vector<uint8_t>& stream) {
       final_axis[e.second[0]] = final_axis[e.second[1]] = -1;
   std::array<size_t, 6> count{};
   for (int x : final_axis)
-    if (x >= 0) ++count[static_cast<size_t>(x)];
-  out += ",\n  \"grid_size\": " + std::to_string(a) + ",\n  \"height_depth\": " + std::to_string(depth) +
+    if (x >= 0) ++count[static_cast<size_t>(x % 6)];
+  if (grids.size() > 1) {
+    out += ",\n  \"grid_sizes\": [";
+    for (size_t g = 0; g < grids.size(); ++g) out += (g ? ", " : "") + std::to_string(grids[g]);
+    out += "]";
+  }
+  out += ",\n  \"grid_size\": " + std::to_string(a0) + ",\n  \"height_depth\": " + std::to_string(depth) +
          ",\n  \"regular_triangles_per_axis\": [";
   for (int k = 0; k < 6; ++k) out += (k ? ", " : "") + std::to_string(count[static_cast<size_t>(k)]);
   out += "]";
@@ -640,7 +675,7 @@ void error_vectors(const fs::path& dir) {
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::fprintf(stderr, "usage: %s OUT_DIR [--only-prm-1.1 | --only-1.3 | --only-1.4 | --only-errors | --from-stream NAME FILE FORMAT FEATURE SECTIONS]\n", argv[0]);
+    std::fprintf(stderr, "usage: %s OUT_DIR [--only-prm-1.1 | --only-1.3 | --only-1.4 | --only-1.5 | --only-errors | --from-stream NAME FILE FORMAT FEATURE SECTIONS]\n", argv[0]);
     return 1;
   }
   const fs::path dir = argv[1];
@@ -658,6 +693,23 @@ int main(int argc, char** argv) {
     std::ifstream f(argv[4], std::ios::binary);
     const std::vector<uint8_t> stream((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
     valid(dir, argv[3], stream, argv[5], argv[6], argv[7], prm_features(stream));
+    return 0;
+  }
+  // Format 1.5 (§8.4.2 the grid table): a valid vector with two grid sizes, and the new field's range checks.
+  if (argc > 2 && std::string(argv[2]) == "--only-1.5") {
+    const std::vector<uint8_t> two = two_grid_stream(7);
+    valid(dir, "020-prm-1.5-two-grids", two, "1.5",
+          "PRM stream with the patch grids (Flags bit 4): a grid table of sizes 8 and 6, patches on each, bases from "
+          "their references in their own lattices, linear prediction",
+          "\"3.3\", \"8.4\", \"8.4.2\"", prm_features(two));
+    const char* kS4 = "section 4 (patches)";
+    const char* has[] = {"Extra_Grid_Count 0", "Extra_Grid out of range", "Grid_Index beyond the grid table"};
+    const char* names[] = {"156-extra-grid-count", "157-extra-grid-size", "158-grid-index"};
+    for (int k = 0; k < 3; ++k) {
+      std::string what;
+      const std::vector<uint8_t> bad = mutate(two, 4, 0, "bad_section", "8.4.2", has[k], what);
+      invalid(dir, names[k], bad, "bad_section", "8.4.2", what.c_str(), kS4);
+    }
     return 0;
   }
   if (argc > 2 && std::string(argv[2]) == "--only-errors") {

@@ -75,7 +75,8 @@ Result<DecodedMesh> decode(const uint8_t* data, size_t size, const DecodeOptions
                                             (h.flags & kFlagLersValence) != 0, cls);
       if (!res.ok()) return res;
       res.status = read_patches(data + pts->offset, pts->size, pts->offset, mesh, h.frame.bits, h.bbox_min,
-                                h.bbox_max, (h.flags & kFlagPatchContexts) != 0, cls, q, known, vertex_corner);
+                                h.bbox_max, (h.flags & kFlagPatchContexts) != 0,
+                                (h.flags & kFlagPatchGrids) != 0, cls, q, known, vertex_corner);
       if (!res.ok()) return res;
       res.status = read_positions(data + ps->offset, ps->size, ps->offset, mesh, h.bbox_min, h.bbox_max, q, &known,
                                   &vertex_corner);

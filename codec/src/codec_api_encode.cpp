@@ -39,6 +39,16 @@ Status encode_impl(const uint32_t* q, size_t nv, const uint32_t* tris, size_t nt
   if (prm) {
     if (!valid_grid_size(prm->grid, frame.bits))
       return make_status(Error::invalid_argument, "8.4", 0, "grid size must be 2..2^bits quantization steps");
+    if (prm->extra_grids.size() > static_cast<size_t>(kMaxExtraGrids))
+      return make_status(Error::invalid_argument, "8.4.2", 0, "at most 7 extra grid sizes");
+    for (size_t k = 0; k < prm->extra_grids.size(); ++k) {
+      const int64_t g = prm->extra_grids[k];
+      if (!valid_grid_size(g, frame.bits))
+        return make_status(Error::invalid_argument, "8.4.2", 0, "extra grid size must be 2..2^bits quantization steps");
+      if (g == prm->grid || std::find(prm->extra_grids.begin(), prm->extra_grids.begin() + static_cast<long>(k), g) !=
+                                prm->extra_grids.begin() + static_cast<long>(k))
+        return make_status(Error::invalid_argument, "8.4.2", 0, "grid sizes must be distinct");
+    }
     if (prm->height_depth < -1 || prm->height_depth > kHeightDepthPredicted)
       return make_status(Error::invalid_argument, "9.4", 0, "height depth must be 0..7 (or -1: best)");
     if (prm->overlap_depth < -1 || prm->overlap_depth > kMaxHeightDepth)
@@ -97,13 +107,25 @@ Status encode_impl(const uint32_t* q, size_t nv, const uint32_t* tris, size_t nt
   if (seam) h.flags |= kFlagClersSeam;
   // §7-§9 A PRM: regular triangles found by the encoder's own check; none: the general path.
   std::vector<int8_t> tri_axis;
+  std::vector<uint8_t> tri_grid;  // §8.4.2 index into `grids`
+  std::vector<int64_t> grids;     // §8.4, §8.4.2 Grid_Size and the extra grids the regular triangles use
   std::vector<uint8_t> known;
   PatchStats patch_stats;
   uint32_t regular = 0;
   int depth_used = -1, overlap_used = -1;
   if (prm) {
-    classify_triangles(mesh, cq, prm->grid, tri_axis);
-    for (int8_t a : tri_axis) regular += a >= 0;
+    grids = {prm->grid};
+    if (prm->patch_grids) grids.insert(grids.end(), prm->extra_grids.begin(), prm->extra_grids.end());
+    classify_triangles(mesh, cq, grids, tri_axis, tri_grid);
+    // §8.4.2 The table holds the extra grids in use, renumbered in their order.
+    std::vector<uint8_t> used(grids.size(), 0), renumber(grids.size(), 0);
+    for (uint32_t t = 0; t < mesh.num_triangles(); ++t)
+      if (tri_axis[t] >= 0) used[tri_grid[t]] = 1, ++regular;
+    std::vector<int64_t> kept = {prm->grid};
+    for (size_t g = 1; g < grids.size(); ++g)
+      if (used[g]) renumber[g] = static_cast<uint8_t>(kept.size()), kept.push_back(grids[g]);
+    for (uint8_t& g : tri_grid) g = renumber[g];
+    grids = std::move(kept);
   }
   if (regular > 0) {
     std::vector<uint8_t> irregular(mesh.num_triangles(), 0);
@@ -111,6 +133,7 @@ Status encode_impl(const uint32_t* q, size_t nv, const uint32_t* tris, size_t nt
     for (uint32_t t = 0; t < mesh.num_triangles(); ++t) irregular[t] = dummy[t] != kDummyTriangle && tri_axis[t] < 0;
     h.flags |= kFlagLersValence;  // §7.3 the valence context
     if (prm->patch_contexts) h.flags |= kFlagPatchContexts;  // §8.4.1, §9.7.4 (format 1.4)
+    if (grids.size() > 1) h.flags |= kFlagPatchGrids;        // §8.4.2 (format 1.5)
     write_irregular_triangles(mesh, irregular, true, irregular_payload);
     // The encoder's freedom in the heights (spec Appendix B, PrmOptions::height_lambda), in canonical vertex order.
     std::vector<double> exact;
@@ -133,7 +156,8 @@ Status encode_impl(const uint32_t* q, size_t nv, const uint32_t* tris, size_t nt
     auto patch_coding = [&](int d, int overlap) {
       PatchCoding c;
       c.bits = frame.bits;
-      c.grid = prm->grid;
+      c.grids = grids;
+      c.tri_grid = &tri_grid;
       c.box_lo = h.bbox_min;
       c.box_hi = h.bbox_max;
       c.depth = d;
@@ -188,6 +212,7 @@ Status encode_impl(const uint32_t* q, size_t nv, const uint32_t* tris, size_t nt
   }
   if (h.flags & kFlagClersSeam) h.version_minor = kFormatMinorSeam;  // §3.2 1.3
   if (h.flags & kFlagPatchContexts) h.version_minor = kFormatMinorPatchContexts;  // §3.2 1.4
+  if (h.flags & kFlagPatchGrids) h.version_minor = kFormatMinorPatchGrids;  // §3.2 1.5
   size_t header_bytes = 0;
   if (regular > 0)
     out = write_container(h,
@@ -214,6 +239,7 @@ Status encode_impl(const uint32_t* q, size_t nv, const uint32_t* tris, size_t nt
     r.height_depth = depth_used;
     r.overlap_depth = overlap_used;
     r.predicted_patches = patch_stats.predicted_patches;
+    r.grid_sizes = static_cast<uint32_t>(grids.size());
     r.vertices = real;
     r.triangles = static_cast<uint32_t>(nt);
     r.components = static_cast<uint32_t>(plan.component_sizes.size());

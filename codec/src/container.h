@@ -27,11 +27,13 @@ const char* section_name(uint8_t id);
 
 // §3.3 Flags: bit 0 = the valence context of the irregular triangles (§7.3, format 1.2), bit 2 = the seam context
 // of the CLERS symbols (§6.5.2, format 1.3), bit 3 = the patch contexts: bases from their references (§8.4.1) and
-// the heights' sign contexts (§9.7.4, format 1.4); the other bits are reserved (unsupported_feature).
+// the heights' sign contexts (§9.7.4, format 1.4), bit 4 = the patch grids: a grid size per patch (§8.4.2, format
+// 1.5); the other bits are reserved (unsupported_feature).
 constexpr uint8_t kFlagLersValence = 0x01;
 constexpr uint8_t kFlagClersSeam = 0x04;
 constexpr uint8_t kFlagPatchContexts = 0x08;
-constexpr uint8_t kKnownFlags = kFlagLersValence | kFlagClersSeam | kFlagPatchContexts;
+constexpr uint8_t kFlagPatchGrids = 0x10;
+constexpr uint8_t kKnownFlags = kFlagLersValence | kFlagClersSeam | kFlagPatchContexts | kFlagPatchGrids;
 
 // §3.3 The header fields.
 struct Header {

@@ -65,7 +65,7 @@ Status read_container(const uint8_t* data, size_t size, Container& out) {
   if (body.failed()) return ended("3.3", "the header");
   if ((h.flags & ~kKnownFlags) != 0)
     return make_status(Error::unsupported_feature, "3.3", 6,
-                       "Flags " + std::to_string(h.flags) + " (only bits 0, 2 and 3 are defined)");
+                       "Flags " + std::to_string(h.flags) + " (only bits 0, 2, 3 and 4 are defined)");
   h.frame.bits = body.u8();
   if (body.failed()) return ended("3.3", "the header");
   if (h.frame.bits < kMinPositionBits || h.frame.bits > kMaxPositionBits)

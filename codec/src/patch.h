@@ -13,12 +13,14 @@
 namespace prm::codec {
 
 // §7.1 The encoder's regularity check, from the quantized positions cq (3 per closed-mesh vertex) and the grid
-// size A: a triangle without dummy vertices is regular for axis a when its three vertices are lattice points of
-// pair a / 2 (§8.1) forming a unit grid triangle, counter-clockwise for a even, clockwise for a odd (the triangle
-// faces the axis). The lowest pair wins. Then, in one pass, every regular triangle with a regular
-// neighbour of another axis is made irregular (a patch has one axis, §8.2; demoting creates no new conflict). tri_axis: 0..5, or -1 for irregular and dummy triangles.
-void classify_triangles(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, int64_t grid,
-                        std::vector<int8_t>& tri_axis);
+// sizes A (grids[0] = Grid_Size; more with format 1.5's grid table, §8.4.2): a triangle without dummy vertices is
+// regular for axis a and grid g when its three vertices are lattice points of pair a / 2 (§8.1) of grid size
+// grids[g] forming a unit grid triangle, counter-clockwise for a even, clockwise for a odd (the triangle faces the
+// axis). The lowest grid index, then the lowest pair wins. Then, in one pass, every regular triangle with a regular
+// neighbour of another axis or grid is made irregular (a patch has one axis and one grid, §8.2; demoting creates no
+// new conflict). tri_axis: 0..5, or -1 for irregular and dummy triangles; tri_grid: the grid index of a regular one.
+void classify_triangles(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, const std::vector<int64_t>& grids,
+                        std::vector<int8_t>& tri_axis, std::vector<uint8_t>& tri_grid);
 
 struct PatchStats {
   uint32_t patches = 0;
@@ -29,7 +31,10 @@ struct PatchStats {
 // §8-§9 How the encoder codes the patches section: its fields and the choices behind them.
 struct PatchCoding {
   int bits = 0;                        // §3.3 quantization bits
-  int64_t grid = 0;                    // §8.4 Grid_Size
+  // §8.4 Grid_Size, then (Flags bit 4, format 1.5, when there is more than one) the extra grid sizes of §8.4.2's
+  // table, in order; a regular triangle's lattice is grids[tri_grid[t]].
+  std::vector<int64_t> grids;
+  const std::vector<uint8_t>* tri_grid = nullptr;
   std::array<uint32_t, 3> box_lo{};    // §3.3 the header's quantized bounding box
   std::array<uint32_t, 3> box_hi{};
   int depth = 0;                       // §8.4 Height_Depth: 0..kMaxHeightDepth or kHeightDepthPredicted
@@ -61,8 +66,9 @@ Status write_patches(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, co
 // §8-§9 Decoder: positions of the patch vertices into q (3 per closed-mesh vertex), known[v] = 1 for them.
 // cls: per triangle kRegular / kIrregular / kDummyTriangle (§7). vertex_corner: out, §10.2 Vertex_Corner of the
 // mesh, which the patches need and read_positions reuses (built once per stream).
+// contexts: Flags bit 3 (§8.4.1, §9.7.4); grids: Flags bit 4 (§8.4.2).
 Status read_patches(const uint8_t* data, size_t size, uint64_t offset, const ClosedMesh& mesh, int bits,
-                    const std::array<uint32_t, 3>& lo, const std::array<uint32_t, 3>& hi, bool contexts,
+                    const std::array<uint32_t, 3>& lo, const std::array<uint32_t, 3>& hi, bool contexts, bool grids,
                     const std::vector<uint8_t>& cls, std::vector<uint32_t>& q, std::vector<uint8_t>& known,
                     std::vector<uint32_t>& vertex_corner);
 

@@ -13,7 +13,7 @@
 namespace prm::codec {
 
 Status read_patches(const uint8_t* data, size_t size, uint64_t offset, const ClosedMesh& mesh, int bits,
-                    const std::array<uint32_t, 3>& lo, const std::array<uint32_t, 3>& hi, bool contexts,
+                    const std::array<uint32_t, 3>& lo, const std::array<uint32_t, 3>& hi, bool contexts, bool grids,
                     const std::vector<uint8_t>& cls, std::vector<uint32_t>& q, std::vector<uint8_t>& known,
                     std::vector<uint32_t>& vertex_corner_out) {
   q.assign(size_t{3} * mesh.num_vertices, 0);
@@ -29,11 +29,23 @@ Status read_patches(const uint8_t* data, size_t size, uint64_t offset, const Clo
   const int64_t grid = rc.decode_direct(kGridBits);
   const int depth = static_cast<int>(rc.decode_direct(3));
   if (!valid_grid_size(grid, bits)) return fail(Error::bad_section, "8.4", "Grid_Size out of range");
+  // §8.4.2 The grid table (Flags bit 4): Grid_Size, then 1..7 extra grid sizes, each valid and new.
+  std::vector<HexLattice> lattices = {HexLattice::with_grid(grid)};
+  if (grids) {
+    const int extra = static_cast<int>(rc.decode_direct(kExtraGridCountBits));
+    if (extra == 0) return fail(Error::bad_section, "8.4.2", "Extra_Grid_Count 0");
+    for (int k = 0; k < extra; ++k) {
+      const int64_t g = rc.decode_direct(kGridBits);
+      if (!valid_grid_size(g, bits)) return fail(Error::bad_section, "8.4.2", "Extra_Grid out of range");
+      for (const HexLattice& l : lattices)
+        if (l.A == g) return fail(Error::bad_section, "8.4.2", "Extra_Grid repeats a grid size");
+      lattices.push_back(HexLattice::with_grid(g));
+    }
+  }
   const bool predicted = depth == kHeightDepthPredicted;
   // §9.7.2 Overlap_Depth and the predictor table.
   const int overlap_depth = predicted ? static_cast<int>(rc.decode_direct(3)) : depth;
   if (overlap_depth > kMaxHeightDepth) return fail(Error::bad_section, "9.7.2", "Overlap_Depth above 6");
-  const HexLattice lc = HexLattice::with_grid(grid);
   const PatchSet ps = build_patches(mesh, cls);
   auto models = std::make_unique<PatchModels>();
   models->lp.sign_context = contexts;
@@ -69,10 +81,14 @@ Status read_patches(const uint8_t* data, size_t size, uint64_t offset, const Clo
     // §8.4 The patch header.
     const int axis = code_symbol8(models->axis, 0, bit);
     const int pair = axis <= 5 ? axis / 2 : 0;  // an axis above 5 is reported below
+    // §8.4.2 The patch's lattice: Grid_Index into the grid table (Flags bit 4), else Grid_Size's.
+    const int grid_index = grids ? code_symbol8(models->grid, 0, bit) : 0;
+    const bool grid_ok = static_cast<size_t>(grid_index) < lattices.size();  // reported below
+    const HexLattice& lc = lattices[grid_ok ? static_cast<size_t>(grid_index) : 0];
     // §8.4.1 The base from its reference, if it has one; otherwise from the previous patch's base.
     std::array<int64_t, 2> from = previous;
-    const bool referenced =
-        contexts && axis <= 5 && base_from_reference(mesh, ps, p, pair, vertex_corner, known, q.data(), lc, from);
+    const bool referenced = contexts && axis <= 5 && grid_ok &&
+                            base_from_reference(mesh, ps, p, pair, vertex_corner, known, q.data(), lc, from);
     SignedIntModel& mi = referenced ? models->base_ref_i : models->base_i;
     SignedIntModel& mj = referenced ? models->base_ref_j : models->base_j;
     int64_t di, dj;
@@ -82,6 +98,7 @@ Status read_patches(const uint8_t* data, size_t size, uint64_t offset, const Clo
     const int align = code_symbol8(models->align, 0, bit);
     if (rc.failed()) return fail(Error::truncated, "5.5", "the patch data ends early");
     if (axis > 5 || align > 5) return fail(Error::bad_section, "8.4", which + ": axis or alignment above 5");
+    if (!grid_ok) return fail(Error::bad_section, "8.4.2", which + ": Grid_Index beyond the grid table");
     if (base[0] <= -coord_bound || base[0] >= coord_bound || base[1] <= -coord_bound || base[1] >= coord_bound)
       return fail(Error::bad_section, "8.4", which + ": base vertex out of range");
     previous = base;

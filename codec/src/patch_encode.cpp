@@ -89,21 +89,28 @@ void record_heights(const Level& level, const LpRaster& raster, const LpTable& t
 
 }  // namespace
 
-void classify_triangles(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, int64_t grid,
-                        std::vector<int8_t>& tri_axis) {
+void classify_triangles(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, const std::vector<int64_t>& grids,
+                        std::vector<int8_t>& tri_axis, std::vector<uint8_t>& tri_grid) {
   const uint32_t nt = mesh.num_triangles();
-  const HexLattice lc = HexLattice::with_grid(grid);
+  std::vector<HexLattice> lattices;
+  for (int64_t g : grids) lattices.push_back(HexLattice::with_grid(g));
   const std::vector<uint8_t> dummy = dummy_triangles(mesh);
   tri_axis.assign(nt, -1);
-  for (uint32_t t = 0; t < nt; ++t)
-    if (dummy[t] != kDummyTriangle) tri_axis[t] = static_cast<int8_t>(regular_axis(cq, lc, &mesh.corner_vertex[3 * t]));
-  // §8.2 One axis per patch: regular neighbours of different axes are both made irregular.
+  tri_grid.assign(nt, 0);
+  for (uint32_t t = 0; t < nt; ++t) {
+    if (dummy[t] == kDummyTriangle) continue;
+    for (size_t g = 0; g < lattices.size() && tri_axis[t] < 0; ++g) {
+      tri_axis[t] = static_cast<int8_t>(regular_axis(cq, lattices[g], &mesh.corner_vertex[3 * t]));
+      tri_grid[t] = static_cast<uint8_t>(g);
+    }
+  }
+  // §8.2 One axis and one grid per patch: regular neighbours of different axes or grids are both made irregular.
   std::vector<uint8_t> demote(nt, 0);
   for (uint32_t t = 0; t < nt; ++t) {
     if (tri_axis[t] < 0) continue;
     for (int k = 0; k < 3; ++k) {
       const uint32_t n = static_cast<uint32_t>(mesh.opp[3 * t + k]) / 3;
-      if (tri_axis[n] >= 0 && tri_axis[n] != tri_axis[t]) demote[t] = 1;
+      if (tri_axis[n] >= 0 && (tri_axis[n] != tri_axis[t] || tri_grid[n] != tri_grid[t])) demote[t] = 1;
     }
   }
   for (uint32_t t = 0; t < nt; ++t)
@@ -152,7 +159,7 @@ class PatchSectionWriter {
   PatchSectionWriter(const ClosedMesh& mesh, const std::vector<uint32_t>& cq, const std::vector<int8_t>& tri_axis,
                      const PatchCoding& coding, const HeightFreedom* freedom, std::vector<uint8_t>& known)
       : mesh_(mesh), cq_(cq), tri_axis_(tri_axis), coding_(coding), freedom_(freedom), known_(known),
-        lc_(HexLattice::with_grid(coding.grid)), predicted_(coding.depth == kHeightDepthPredicted),
+        predicted_(coding.depth == kHeightDepthPredicted),
         free_heights_(freedom && freedom->exact && freedom->tolerance >= 0.5 && freedom->lambda > 0),
         cw_(free_heights_ ? cw_copy_ : cq) {}
 
@@ -176,7 +183,7 @@ class PatchSectionWriter {
   const PatchCoding& coding_;
   const HeightFreedom* freedom_;
   std::vector<uint8_t>& known_;
-  const HexLattice lc_;
+  std::vector<HexLattice> lattices_;  // §8.4.2 per grid of the table (one without Flags bit 4)
   const bool predicted_;
   // The positions as coded so far: cq, with the heights the encoder chose when it has freedom.
   const bool free_heights_;
@@ -202,7 +209,7 @@ class PatchSectionWriter {
   std::vector<uint8_t> scratch_, placed_;
   std::vector<int64_t> h_, res_;
   LpRaster raster_;
-  int axis_ = 0, align_ = 0;
+  int axis_ = 0, align_ = 0, grid_ = 0;  // grid_: the patch's Grid_Index (§8.4.2)
   std::array<int64_t, 2> c0_;
   std::array<int64_t, 2> previous_{0, 0};
   std::optional<LpNeighbours> nb_;   // §9.7.4 for the vertices without a tap set
@@ -218,8 +225,14 @@ void PatchSectionWriter::start() {
   ps_ = build_patches(mesh_, cls);
   models_->lp.sign_context = coding_.contexts;
   if (coding_.contexts) vertex_corners(mesh_, vertex_corner_);
-  rc_.encode_direct(static_cast<uint32_t>(coding_.grid), kGridBits);
+  lattices_.clear();
+  for (int64_t g : coding_.grids) lattices_.push_back(HexLattice::with_grid(g));
+  rc_.encode_direct(static_cast<uint32_t>(coding_.grids[0]), kGridBits);
   rc_.encode_direct(static_cast<uint32_t>(coding_.depth), 3);
+  if (coding_.grids.size() > 1) {  // §8.4.2 the grid table
+    rc_.encode_direct(static_cast<uint32_t>(coding_.grids.size() - 1), kExtraGridCountBits);
+    for (size_t k = 1; k < coding_.grids.size(); ++k) rc_.encode_direct(static_cast<uint32_t>(coding_.grids[k]), kGridBits);
+  }
   if (predicted_) rc_.encode_direct(static_cast<uint32_t>(coding_.overlap_depth), 3);
   if (free_heights_) {
     cw_copy_ = cq_;
@@ -241,10 +254,12 @@ void PatchSectionWriter::start() {
 Status PatchSectionWriter::prepare(size_t p) {
   const uint32_t t0 = ps_.order[ps_.start[p]];
   axis_ = tri_axis_[t0];
+  grid_ = coding_.tri_grid ? (*coding_.tri_grid)[t0] : 0;
+  const HexLattice& lc = lattices_[static_cast<size_t>(grid_)];
   const int pair = axis_ / 2;
   std::array<int64_t, 2> c1;
-  if (!lattice_of(cq_, lc_, pair, mesh_.corner_vertex[3 * t0], c0_) ||
-      !lattice_of(cq_, lc_, pair, mesh_.corner_vertex[3 * t0 + 1], c1))
+  if (!lattice_of(cq_, lc, pair, mesh_.corner_vertex[3 * t0], c0_) ||
+      !lattice_of(cq_, lc, pair, mesh_.corner_vertex[3 * t0 + 1], c1))
     return make_status(Error::internal, "8.3", 0, "a regular triangle's corner is not a lattice point");
   align_ = direction_index(c1[0] - c0_[0], c1[1] - c0_[1]);
   // The decoder's propagation must find every vertex where it is.
@@ -252,7 +267,7 @@ Status PatchSectionWriter::prepare(size_t p) {
     return make_status(Error::internal, "8.3", 0, "lattice conflict in patch " + std::to_string(p));
   for (uint32_t l = 0; l < level_.size(); ++l) {
     std::array<int64_t, 2> actual;
-    if (!lattice_of(cq_, lc_, pair, global_[l], actual) || actual != level_.coord[l])
+    if (!lattice_of(cq_, lc, pair, global_[l], actual) || actual != level_.coord[l])
       return make_status(Error::internal, "8.3", 0, "patch " + std::to_string(p) + " propagates off its lattice");
   }
   h_.resize(level_.size());
@@ -299,8 +314,10 @@ Status PatchSectionWriter::write_table(const FittedTable* given) {
 void PatchSectionWriter::write_header(size_t p) {
   const int pair = axis_ / 2;
   code_symbol8(models_->axis, axis_, bit_);
+  if (coding_.grids.size() > 1) code_symbol8(models_->grid, grid_, bit_);  // §8.4.2 Grid_Index
   std::array<int64_t, 2> near;
-  if (coding_.contexts && base_from_reference(mesh_, ps_, p, pair, vertex_corner_, known_, cw_.data(), lc_, near)) {
+  if (coding_.contexts && base_from_reference(mesh_, ps_, p, pair, vertex_corner_, known_, cw_.data(),
+                                              lattices_[static_cast<size_t>(grid_)], near)) {
     encode_signed(rc_, models_->base_ref_i, c0_[0] - near[0]);
     encode_signed(rc_, models_->base_ref_j, c0_[1] - near[1]);
   } else {

@@ -22,6 +22,10 @@ namespace prm::codec {
 constexpr int kMaxHeightDepth = 6;  // §9.4 Height_Depth 0..6: difference patches
 constexpr int kHeightDepthPredicted = kLinearPredictionDepth;  // §9.7 Height_Depth 7: linear prediction (format 1.2)
 constexpr int kGridBits = 21;       // §8.4 Grid_Size: 21 direct bits
+// §8.4.2 The grid table (Flags bit 4, format 1.5): Extra_Grid_Count in 3 direct bits, 1..kMaxExtraGrids (prm/lattice.h)
+// extra grid sizes after Grid_Size; a patch's Grid_Index is a Symbol8.
+constexpr int kExtraGridCountBits = 3;
+static_assert(kMaxExtraGrids == (1 << kExtraGridCountBits) - 1, "Extra_Grid_Count's 3 bits hold 1..7");
 
 struct HeightModels {
   SignedIntModel final_[kMaxHeightDepth + 1];
@@ -32,6 +36,7 @@ struct HeightModels {
 struct PatchModels {
   BitModel axis[8];
   BitModel align[8];
+  BitModel grid[8];  // §8.4.2 Grid_Index with Flags bit 4
   SignedIntModel base_i, base_j;
   SignedIntModel base_ref_i, base_ref_j;  // §8.4.1 with Flags bit 3
   HeightModels heights;

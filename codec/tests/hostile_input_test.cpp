@@ -218,14 +218,15 @@ TEST(Hostile, HeaderFields) {
   };
   EXPECT_EQ(patched(0, 'X'), Error::bad_magic);
   EXPECT_EQ(patched(4, 2), Error::unsupported_version);
-  // Flags: bits 0 (the LERS valence context, §7.3), 2 (the CLERS seam context, §6.5.2) and 3 (the patch contexts,
-  // §8.4.1, §9.7.4) are defined (§3.3).
+  // Flags: bits 0 (the LERS valence context, §7.3), 2 (the CLERS seam context, §6.5.2), 3 (the patch contexts,
+  // §8.4.1, §9.7.4) and 4 (the patch grids, §8.4.2) are defined (§3.3).
   const uint8_t seam = s[6] & 0x04;
-  for (uint8_t flags : {2, 0x10, 0x80, 0xF2})
+  for (uint8_t flags : {2, 0x20, 0x40, 0x80, 0xE2})
     EXPECT_EQ(patched(6, static_cast<uint8_t>(flags | seam)), Error::unsupported_feature) << int{flags};
-  // A general-path stream with bit 0 or 3: nothing to apply them to.
+  // A general-path stream with bit 0, 3 or 4: nothing to apply them to.
   EXPECT_EQ(patched(6, static_cast<uint8_t>(1 | seam)), Error::ok);
   EXPECT_EQ(patched(6, static_cast<uint8_t>(8 | seam)), Error::ok);
+  EXPECT_EQ(patched(6, static_cast<uint8_t>(0x10 | seam)), Error::ok);
   // Bit 2 toggled: the symbols decode with other contexts; whatever comes out, it is checked (§6.8), not trusted.
   const Error toggled = patched(6, static_cast<uint8_t>(seam ^ 0x04));
   EXPECT_NE(toggled, Error::internal);

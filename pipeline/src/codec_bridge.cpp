@@ -36,6 +36,15 @@ codec::Result<std::vector<uint8_t>> encode_prm_mesh(const remesh::PrmMesh& prm, 
   const std::vector<uint32_t> tris = flat_triangles(m);
   codec::PrmOptions options = given;
   options.grid = prm.lattice.A;
+  // §8.4.2 The reliefs' other grid sizes (format 1.5; with PrmOptions::patch_grids off the stream has one grid, the
+  // other reliefs' triangles coded as irregular).
+  options.extra_grids.clear();
+  for (size_t r = 0; r < prm.relief_axis.size(); ++r) {
+    const int64_t g = prm.grid_of(r);
+    if (g != options.grid && std::find(options.extra_grids.begin(), options.extra_grids.end(), g) ==
+                                 options.extra_grids.end())
+      options.extra_grids.push_back(g);
+  }
   std::vector<double> unrounded;
   if (options.height_tolerance >= 0.5 && options.height_lambda > 0 && !options.unrounded) {
     unrounded.resize(q.size());
@@ -62,6 +71,7 @@ codec::Result<std::vector<uint8_t>> encode_any_mesh(const Mesh& mesh, int bits, 
     codec::PrmOptions po;
     po.seam_context = seam;
     po.patch_contexts = max_minor >= codec::kFormatMinorPatchContexts;
+    po.patch_grids = max_minor >= codec::kFormatMinorPatchGrids;
     return encode_prm_mesh(prm, report, po);
   }
   return encode_general_mesh(mesh, bits, report, max_minor);

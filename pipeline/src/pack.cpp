@@ -17,6 +17,7 @@
 #include "prm/pipeline/codec_bridge.h"
 #include "prm/pipeline/pack_general.h"
 #include "prm/remesh/lattice.h"
+#include "prm/remesh/relief_grids.h"
 
 namespace prm::pipeline {
 
@@ -45,6 +46,7 @@ struct SearchContext {
   const MetroReference& full;
   EffortPlan plan;
   const AabbTree* source_tree = nullptr;  // source's tree when source is not the references' mesh (a thinned boundary)
+  std::vector<double> relief_grid_scale;  // PackOptions::adaptive: per relief of `layout` (empty: one grid)
 };
 
 // One bit depth and step scale: repair (done by the caller), remesh, encode. `measured`: false when the chosen stream,
@@ -75,6 +77,7 @@ PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bit
   ro.grid_size = options.grid_size;
   ro.grid_fraction = options.grid_fraction;
   ro.initial_grid_size = initial_grid;
+  ro.relief_grid_scale = ctx.relief_grid_scale;
   ro.target_error = kQuantizationMargin * options.target_error;
   // The worst case: --max-error is a constraint of the search and sets the local refinement's bound
   // (deviation_refinement.h); without it, the refinement (when asked for) aims at kDefaultMaxErrorPerTarget x the
@@ -95,6 +98,7 @@ PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bit
   po.height_sweeps = options.height_sweeps;
   po.seam_context = options.max_minor >= codec::kFormatMinorSeam ? -1 : 0;
   po.patch_contexts = options.max_minor >= codec::kFormatMinorPatchContexts;
+  po.patch_grids = options.max_minor >= codec::kFormatMinorPatchGrids;
   // The error of a decoded candidate: the search's samples decide unless they fall within kSparseBand of the target,
   // where the full density decides (the sparser samples weigh the vertices more: +0.5% at 4 per face, +4% at 2 on
   // the horse), so that every decision is the one the full density would make.
@@ -384,8 +388,16 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
   relief_options.tau = options.tau;
   relief_options.parallel = options.parallel;
   const remesh::ReliefLayout layout = remesh::build_reliefs(source, relief_options);
-  const SearchContext ctx{source, layout, sparse ? *sparse_reference : reference, reference, plan, thinned_tree.get()};
-  const SearchContext full_ctx{source, layout, reference, reference, plan, thinned_tree.get()};
+  // Issue 23: a grid scale per relief from its measured detail (format 1.5 only).
+  std::vector<double> relief_grid_scale;
+  if (options.adaptive && options.max_minor >= codec::kFormatMinorPatchGrids) {
+    remesh::ReliefGridOptions go;
+    go.exponent = options.adaptive_exponent;
+    relief_grid_scale = remesh::allocate_relief_grid_scales(remesh::measure_relief_detail(source, layout), go);
+  }
+  const SearchContext ctx{source, layout, sparse ? *sparse_reference : reference, reference, plan,
+                          thinned_tree.get(), relief_grid_scale};
+  const SearchContext full_ctx{source, layout, reference, reference, plan, thinned_tree.get(), relief_grid_scale};
   size_t rounds = 0;
   int attempts = 0;
   // One bit depth and step scale; repeated with full-density Metro when the sparse samples promised too much.

@@ -35,8 +35,11 @@ HeightFitStats fit_heights(PrmMesh& prm, const Mesh& input, const AabbTree& tree
   Mesh& m = prm.mesh;
   const size_t nv = m.positions.size(), nf = m.triangles.size();
   if (nv == 0 || tree.empty()) return stats;
-  const double grid_length = static_cast<double>(prm.lattice.A) * prm.frame.step;
-  const double max_shift = options.max_shift * grid_length;
+  // The largest move, a fraction of the vertex's own relief's grid length (spec §8.4.2: a grid size per relief).
+  auto max_shift_of = [&](size_t v) {
+    return options.max_shift * static_cast<double>(prm.grid_of(static_cast<size_t>(prm.vertex_relief[v]))) *
+           prm.frame.step;
+  };
   std::vector<int> axis(nv, -1);
   for (size_t v = 0; v < nv; ++v)
     if (prm.vertex_relief[v] >= 0) axis[v] = prm.relief_axis[static_cast<size_t>(prm.vertex_relief[v])];
@@ -110,6 +113,7 @@ HeightFitStats fit_heights(PrmMesh& prm, const Mesh& input, const AabbTree& tree
     std::vector<uint32_t> touched;
     for (uint32_t v = 0; v < nv; ++v) {
       if (axis[v] < 0 || !(den[v] > 0)) continue;
+      const double max_shift = max_shift_of(v);
       const double target = std::clamp(shift[v] + num[v] / den[v], -max_shift, max_shift);
       if (target == shift[v]) continue;
       m.positions[v] = start[v] + axis_vector(axis[v]) * target;

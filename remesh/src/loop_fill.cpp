@@ -85,11 +85,11 @@ MergedMesh merge_reliefs(const ReliefMeshView& view, const std::vector<Resampled
         }
       std::sort(xs.begin(), xs.end());
       std::sort(ys.begin(), ys.end());
-      // Two reliefs of one axis pair share the grid planes: their vertices on ab coincide where the same plane
-      // cuts it. They stay distinct here (a zero-length rung of the loop); optimize_seams() merges each such
-      // pair when the link condition allows, which breaks the loop there.
-      const bool shared_lattice = axis_pair((*view.relief_axis)[static_cast<size_t>(r1)]) ==
-                                  axis_pair((*view.relief_axis)[static_cast<size_t>(r2)]);
+      // Two reliefs of one axis pair and one grid size share the grid planes: their vertices on ab coincide where
+      // the same plane cuts it. They stay distinct here (a zero-length rung of the loop); optimize_seams() merges
+      // each such pair when the link condition allows, which breaks the loop there. Reliefs of different grid sizes
+      // share no plane (spec §8.4.2): their seam is joined like one between pairs.
+      const bool shared_lattice = view.slot(r1) == view.slot(r2);
       if (shared_lattice && it != seams.end())
         for (const SeamPoint& p : it->second)
           for (const SeamPoint& q : it->second)

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <stdexcept>
 #include <string>
 
 #include "prm/error.h"
@@ -80,18 +81,24 @@ bool edge_generic(const std::array<double, 3>& Fa, const std::array<double, 3>& 
 
 size_t make_generic(Mesh& refined, const std::vector<int32_t>& face_relief, const std::vector<int>& relief_axis,
                     const std::vector<std::array<int32_t, 3>>& adjacency, const QuantFrame& frame,
-                    const HexLattice& lattice) {
+                    const std::vector<HexLattice>& lattices, const std::vector<int>& relief_grid) {
   const size_t nv = refined.positions.size();
-  // Axis pairs used around each vertex (bit mask).
-  std::vector<uint8_t> pairs(nv, 0);
+  if (lattices.size() > 10) throw std::invalid_argument("make_generic: more than 10 lattices");
+  // Lattice slots 3 g + pair used around each vertex (bit mask).
+  auto slot_of = [&](int32_t r) {
+    return 3 * relief_grid[static_cast<size_t>(r)] + axis_pair(relief_axis[static_cast<size_t>(r)]);
+  };
+  std::vector<uint32_t> slots(nv, 0);
   for (size_t f = 0; f < refined.triangles.size(); ++f) {
-    const int pair = axis_pair(relief_axis[static_cast<size_t>(face_relief[f])]);
-    for (uint32_t v : refined.triangles[f]) pairs[v] |= static_cast<uint8_t>(1u << pair);
+    const int slot = slot_of(face_relief[f]);
+    for (uint32_t v : refined.triangles[f]) slots[v] |= 1u << slot;
   }
+  int64_t finest = lattices[0].A;
+  for (const HexLattice& l : lattices) finest = std::min(finest, l.A);
   std::mt19937_64 rng(0x5eed);
   std::uniform_real_distribution<double> uni(-1.0, 1.0);
   // A nudge of a few margins in lattice units: far below one quantization step.
-  const double nudge = 8.0 * kGenericMargin * static_cast<double>(lattice.A) * frame.step;
+  const double nudge = 8.0 * kGenericMargin * static_cast<double>(finest) * frame.step;
   std::vector<uint8_t> moved(nv, 0);
   size_t moved_count = 0;
   double scale = 1.0;  // grows when a configuration resists
@@ -103,9 +110,10 @@ size_t make_generic(Mesh& refined, const std::vector<int32_t>& face_relief, cons
     }
   };
   auto generic_vertex = [&](uint32_t v) {
-    for (int k = 0; k < 3; ++k)
-      if ((pairs[v] >> k) & 1)
-        if (!vertex_generic(lattice_family(frame, lattice, k, refined.positions[v]))) return false;
+    for (int s = 0; s < 3 * static_cast<int>(lattices.size()); ++s)
+      if ((slots[v] >> s) & 1)
+        if (!vertex_generic(lattice_family(frame, lattices[static_cast<size_t>(s / 3)], s % 3, refined.positions[v])))
+          return false;
     return true;
   };
   for (int round = 0; round < 64; ++round) {
@@ -118,6 +126,7 @@ size_t make_generic(Mesh& refined, const std::vector<int32_t>& face_relief, cons
       }
     for (size_t f = 0; f < refined.triangles.size(); ++f) {
       const int pair = axis_pair(relief_axis[static_cast<size_t>(face_relief[f])]);
+      const HexLattice& lattice = lattices[static_cast<size_t>(relief_grid[static_cast<size_t>(face_relief[f])])];
       for (int k = 0; k < 3; ++k) {
         const int32_t g = adjacency[f][static_cast<size_t>(k)];
         // Each edge once per relief side: the face with the smaller index, or the only face.
@@ -140,11 +149,15 @@ size_t make_generic(Mesh& refined, const std::vector<int32_t>& face_relief, cons
 
 void prepare_view(ReliefMeshView& view) {
   if (view.opposite.empty()) view.opposite = face_adjacency(*view.mesh);
-  for (int k = 0; k < 3; ++k) {
-    auto& fam = view.family[static_cast<size_t>(k)];
+  view.family.assign(3 * view.lattices.size(), {});
+  std::vector<uint8_t> used(view.family.size(), 0);
+  for (size_t r = 0; r < view.relief_axis->size(); ++r) used[static_cast<size_t>(view.slot(static_cast<int32_t>(r)))] = 1;
+  for (size_t s = 0; s < view.family.size(); ++s) {
+    if (!used[s]) continue;
+    auto& fam = view.family[s];
     fam.resize(view.mesh->positions.size());
     for (size_t v = 0; v < fam.size(); ++v)
-      fam[v] = lattice_family(view.frame, view.lattice, k, view.mesh->positions[v]);
+      fam[v] = lattice_family(view.frame, view.lattices[s / 3], static_cast<int>(s % 3), view.mesh->positions[v]);
   }
 }
 

@@ -20,14 +20,22 @@ struct ReliefMeshView {
   const std::vector<int>* relief_axis = nullptr;      // axis 0..5 per relief id
   const std::vector<int32_t>* source_face = nullptr;  // input face per refined face (may be null: identity)
   QuantFrame frame;
-  HexLattice lattice;
+  // The lattices (a grid size per relief, spec §8.4.2): lattices[g] for the reliefs with relief_grid[r] = g.
+  std::vector<HexLattice> lattices;
+  std::vector<int> relief_grid;                       // per relief id: an index into lattices
   std::vector<std::array<int32_t, 3>> opposite;       // face across edge (k, k+1) of each face, -1 if none
-  std::array<std::vector<std::array<double, 3>>, 3> family;  // per axis pair: (alpha, beta, alpha+beta) per vertex
+  // Per lattice slot 3 g + pair (slot()): (alpha, beta, alpha+beta) per vertex; empty for slots no relief uses.
+  std::vector<std::vector<std::array<double, 3>>> family;
 
   int32_t relief(int32_t f) const { return (*face_relief)[static_cast<size_t>(f)]; }
+  const HexLattice& lattice(int32_t r) const { return lattices[static_cast<size_t>(relief_grid[static_cast<size_t>(r)])]; }
+  // The slot of relief r's lattice and axis pair: reliefs of one slot share their grid lines.
+  int slot(int32_t r) const {
+    return 3 * relief_grid[static_cast<size_t>(r)] + axis_pair((*relief_axis)[static_cast<size_t>(r)]);
+  }
   int32_t source(int32_t f) const { return source_face ? (*source_face)[static_cast<size_t>(f)] : f; }
   const Vec3& position(int32_t v) const { return mesh->positions[static_cast<size_t>(v)]; }
-  const std::array<double, 3>& F(int pair, int32_t v) const { return family[static_cast<size_t>(pair)][static_cast<size_t>(v)]; }
+  const std::array<double, 3>& F(int slot, int32_t v) const { return family[static_cast<size_t>(slot)][static_cast<size_t>(v)]; }
 };
 
 // Face adjacency across edges; throws prm::InputError on a non-manifold edge.
@@ -37,10 +45,11 @@ std::vector<std::array<int32_t, 3>> face_adjacency(const Mesh& mesh);
 std::array<double, 3> lattice_family(const QuantFrame& frame, const HexLattice& lattice, int pair, const Vec3& p);
 
 // Moves vertices by tiny amounts (far below quantization) until no vertex and no edge crossing lies within
-// kGenericMargin of a grid line of any lattice its reliefs use. Returns the number of vertices moved.
+// kGenericMargin of a grid line of any lattice its reliefs use (relief r's: lattices[relief_grid[r]]). Returns the
+// number of vertices moved.
 size_t make_generic(Mesh& refined, const std::vector<int32_t>& face_relief, const std::vector<int>& relief_axis,
                     const std::vector<std::array<int32_t, 3>>& adjacency, const QuantFrame& frame,
-                    const HexLattice& lattice);
+                    const std::vector<HexLattice>& lattices, const std::vector<int>& relief_grid);
 
 // Fills view.opposite (unless the caller has) and view.family.
 void prepare_view(ReliefMeshView& view);

@@ -57,6 +57,7 @@ SlicedRelief slice_relief(const ReliefMeshView& view, const std::vector<int32_t>
   const int hu = pair_u(pair), hw = pair_w(pair), hh = pair_height(pair);
   const Mesh& mesh = *view.mesh;
   const int32_t relief = view.relief(faces.empty() ? 0 : faces[0]);
+  const int slot = faces.empty() ? 0 : view.slot(relief);  // its lattice's grid lines (spec §8.4.2: its own grid)
   const size_t n = faces.size();
 
   std::unordered_map<int32_t, int32_t> local_of;
@@ -94,7 +95,7 @@ SlicedRelief slice_relief(const ReliefMeshView& view, const std::vector<int32_t>
       const uint32_t v = tri(li)[static_cast<size_t>(root) % 3];
       SliceVertex sv;
       sv.kind = SliceKind::Corner;
-      sv.F = view.F(pair, static_cast<int32_t>(v));
+      sv.F = view.F(slot, static_cast<int32_t>(v));
       sv.i = static_cast<int64_t>(std::floor(sv.F[0]));
       sv.j = static_cast<int64_t>(std::floor(sv.F[1]));
       sv.upper = sv.F[2] > static_cast<double>(sv.i + sv.j + 1);
@@ -122,8 +123,8 @@ SlicedRelief slice_relief(const ReliefMeshView& view, const std::vector<int32_t>
       if (edge_list[3 * li + k] >= 0) continue;
       const uint32_t va = tri(li)[k], vb = tri(li)[(k + 1) % 3];
       const int32_t a = static_cast<int32_t>(std::min(va, vb)), b = static_cast<int32_t>(std::max(va, vb));
-      const auto& Fa = view.F(pair, a);
-      const auto& Fb = view.F(pair, b);
+      const auto& Fa = view.F(slot, a);
+      const auto& Fb = view.F(slot, b);
       const Vec3& Pa = view.position(a);
       const Vec3& Pb = view.position(b);
       std::vector<int32_t> list;
@@ -213,7 +214,7 @@ SlicedRelief slice_relief(const ReliefMeshView& view, const std::vector<int32_t>
         const double l1 = ((x - F0[0]) * (F2[1] - F0[1]) - (F2[0] - F0[0]) * (y - F0[1])) / det;
         const double l2 = ((F1[0] - F0[0]) * (y - F0[1]) - (x - F0[0]) * (F1[1] - F0[1])) / det;
         const double l0 = 1.0 - l1 - l2;
-        const auto base = view.lattice.to_base(i, j);
+        const auto base = view.lattice(relief).to_base(i, j);
         sv.position[static_cast<size_t>(hu)] = view.frame.to_real(static_cast<double>(base[0]), hu);
         sv.position[static_cast<size_t>(hw)] = view.frame.to_real(static_cast<double>(base[1]), hw);
         sv.position[static_cast<size_t>(hh)] = l0 * mesh.positions[t[0]][static_cast<size_t>(hh)] +

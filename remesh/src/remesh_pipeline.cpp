@@ -113,9 +113,18 @@ RemeshResult remesh(const Mesh& input, const RemeshOptions& options, const Error
            std::to_string(kVertexBudgetPerInputVertex) + " per input vertex)";
   };
 
+  if (!options.relief_grid_scale.empty()) {
+    if (options.relief_grid_scale.size() != layout.reliefs.size())
+      throw std::invalid_argument("remesh: relief_grid_scale needs one scale per relief");
+    for (double s : options.relief_grid_scale)
+      if (!(s > 0 && s < 1e3)) throw std::invalid_argument("remesh: a relief grid scale must be in (0, 1000)");
+  }
   auto attempt = [&](int64_t grid) {
     const auto ts = std::chrono::steady_clock::now();
     ro.grid = grid;
+    ro.relief_grid.clear();
+    for (double s : options.relief_grid_scale)
+      ro.relief_grid.push_back(std::clamp<int64_t>(std::llround(static_cast<double>(grid) * s), 2, coarsest));
     PrmMesh prm = resample_and_merge(in, ro);
     SearchStep step;
     step.grid = grid;

@@ -76,6 +76,22 @@ PrmMesh resample_and_merge(const LayoutInput& layout, const ResampleOptions& opt
   prm.relief_axis = *layout.relief_axis;
   ResampleStats& st = prm.stats;
   st.reliefs = layout.relief_axis->size();
+  // A grid size per relief (spec §8.4.2): the distinct sizes, the first being options.grid.
+  if (!options.relief_grid.empty() && options.relief_grid.size() != st.reliefs)
+    throw std::invalid_argument("relief_grid needs one grid size per relief");
+  prm.relief_grid = options.relief_grid.empty() ? std::vector<int64_t>(st.reliefs, options.grid) : options.relief_grid;
+  std::vector<HexLattice> lattices = {prm.lattice};
+  std::vector<int> relief_lattice(st.reliefs, 0);
+  for (size_t r = 0; r < st.reliefs; ++r) {
+    size_t g = 0;
+    while (g < lattices.size() && lattices[g].A != prm.relief_grid[r]) ++g;
+    if (g == lattices.size()) lattices.push_back(lattice_of_grid(prm.relief_grid[r], prm.frame.bits));
+    relief_lattice[r] = static_cast<int>(g);
+  }
+  if (lattices.size() > kMaxReliefGrids)
+    throw std::invalid_argument("relief_grid: more than " + std::to_string(kMaxReliefGrids) + " grid sizes");
+  int64_t finest = prm.lattice.A;
+  for (const HexLattice& l : lattices) finest = std::min(finest, l.A);
 
   // A copy to nudge (make_generic): positions and triangles only, not the layout's properties.
   Mesh refined;
@@ -90,14 +106,16 @@ PrmMesh resample_and_merge(const LayoutInput& layout, const ResampleOptions& opt
   // (its vertices are relief-boundary vertices), the merge leaves open and the seam passes never move.
   ReliefMeshView view;
   view.opposite = face_adjacency(refined);  // the nudge moves no vertex to another face: computed once for both
-  st.generic_moves = make_generic(refined, face_relief, prm.relief_axis, view.opposite, prm.frame, prm.lattice);
+  st.generic_moves =
+      make_generic(refined, face_relief, prm.relief_axis, view.opposite, prm.frame, lattices, relief_lattice);
 
   view.mesh = &refined;
   view.face_relief = &face_relief;
   view.relief_axis = &prm.relief_axis;
   view.source_face = layout.source_face;
   view.frame = prm.frame;
-  view.lattice = prm.lattice;
+  view.lattices = lattices;
+  view.relief_grid = relief_lattice;
   prepare_view(view);
 
   // Reliefs are independent: slice and collapse them in parallel, largest first.
@@ -139,7 +157,7 @@ PrmMesh resample_and_merge(const LayoutInput& layout, const ResampleOptions& opt
   const std::vector<Vec3> normals = unit_face_normals(input);
   SeamOptions so;
   so.max_normal_angle_deg = options.max_normal_angle_deg;
-  so.grid_length = static_cast<double>(prm.lattice.A) * prm.frame.step;
+  so.grid_length = static_cast<double>(finest) * prm.frame.step;
   so.error_flip_weight = options.error_flip_weight;
   // The input's tree: the caller's (pack's Metro reference holds one of the same mesh), or one built here.
   std::unique_ptr<AabbTree> own_tree;
@@ -253,8 +271,12 @@ void store_prm_labels(PrmMesh& prm) {
                 prm.frame.origin[0], prm.frame.origin[1], prm.frame.origin[2], prm.frame.step,
                 static_cast<long long>(prm.lattice.A));
   m.comments.push_back(buf);
-  for (size_t r = 0; r < prm.relief_axis.size(); ++r)
-    m.comments.push_back("prm-relief " + std::to_string(r) + " axis " + std::to_string(prm.relief_axis[r]));
+  for (size_t r = 0; r < prm.relief_axis.size(); ++r) {
+    std::string c = "prm-relief " + std::to_string(r) + " axis " + std::to_string(prm.relief_axis[r]);
+    // Its own grid size (spec §8.4.2), when it is not the frame's.
+    if (prm.grid_of(r) != prm.lattice.A) c += " grid " + std::to_string(prm.grid_of(r));
+    m.comments.push_back(c);
+  }
 }
 
 PrmMesh load_prm_labels(Mesh mesh) {
@@ -274,18 +296,33 @@ PrmMesh load_prm_labels(Mesh mesh) {
         throw InputError("malformed 'prm-frame' comment: " + c);
       have_frame = true;
     } else if (tag == "prm-relief") {
-      long long id = -1;
-      std::string k;
+      long long id = -1, own_grid = 0;
+      std::string k, kg;
       int axis = -1;
       in >> id >> k >> axis;
-      if (!in || k != "axis" || id < 0 || id > 1000000 || axis < 0 || axis > 5)
+      const bool parsed = static_cast<bool>(in);
+      if (in >> kg >> own_grid) {
+        if (kg != "grid") throw InputError("malformed 'prm-relief' comment: " + c);
+      } else {
+        own_grid = 0;
+      }
+      if (!parsed || k != "axis" || id < 0 || id > 1000000 || axis < 0 || axis > 5)
         throw InputError("malformed 'prm-relief' comment: " + c);
-      if (prm.relief_axis.size() <= static_cast<size_t>(id)) prm.relief_axis.resize(static_cast<size_t>(id) + 1, -1);
+      if (prm.relief_axis.size() <= static_cast<size_t>(id)) {
+        prm.relief_axis.resize(static_cast<size_t>(id) + 1, -1);
+        prm.relief_grid.resize(static_cast<size_t>(id) + 1, 0);
+      }
       prm.relief_axis[static_cast<size_t>(id)] = axis;
+      prm.relief_grid[static_cast<size_t>(id)] = own_grid;  // 0: the frame's, set below
     }
   }
   if (!have_frame) throw InputError("not a PRM file: the 'prm-frame' comment is missing (run prm remesh first)");
   prm.lattice = HexLattice::with_grid(grid);
+  for (int64_t& g : prm.relief_grid) {
+    if (g == 0) g = grid;
+    if (!valid_grid_size(g, prm.frame.bits))
+      throw InputError("a 'prm-relief' grid size " + std::to_string(g) + " outside 2..2^bits");
+  }
   auto column = [&](const Property* p, const char* what) -> const std::vector<double>& {
     if (!p) throw InputError(std::string("not a PRM file: the property '") + what + "' is missing");
     return p->values;

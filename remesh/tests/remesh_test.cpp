@@ -59,7 +59,8 @@ void expect_valid_prm(const Mesh& input, const PrmMesh& prm, const std::string& 
     const int32_t r = prm.vertex_relief[v];
     if (r < 0) continue;
     const int pair = axis_pair(prm.relief_axis[static_cast<size_t>(r)]);
-    const auto base = prm.lattice.to_base(prm.lattice_i[v], prm.lattice_j[v]);
+    // Its relief's own lattice (spec §8.4.2: a grid size per relief).
+    const auto base = HexLattice::with_grid(prm.grid_of(static_cast<size_t>(r))).to_base(prm.lattice_i[v], prm.lattice_j[v]);
     ASSERT_EQ(prm.frame.quantize(prm.mesh.positions[v][static_cast<size_t>(pair_u(pair))], pair_u(pair)), base[0]) << name;
     ASSERT_EQ(prm.frame.quantize(prm.mesh.positions[v][static_cast<size_t>(pair_w(pair))], pair_w(pair)), base[1]) << name;
   }
@@ -84,6 +85,7 @@ void expect_ply_round_trip(const PrmMesh& prm, const std::string& name) {
   EXPECT_EQ(back.face_regular, prm.face_regular) << name;
   EXPECT_EQ(back.relief_axis, prm.relief_axis) << name;
   EXPECT_EQ(back.lattice.A, prm.lattice.A) << name;
+  EXPECT_EQ(back.relief_grid, prm.relief_grid) << name;
   EXPECT_EQ(back.frame.origin, prm.frame.origin) << name;
   EXPECT_EQ(back.frame.step, prm.frame.step) << name;
 }

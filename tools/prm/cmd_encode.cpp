@@ -33,7 +33,7 @@ void add_encode_command(CLI::App& root) {
   struct Options {
     std::string input, output;
     int bits = 12;
-    std::string max_version = "1.4";
+    std::string max_version = "1.5";
     bool json = false;
   };
   auto opt = std::make_shared<Options>();
@@ -41,9 +41,10 @@ void add_encode_command(CLI::App& root) {
   cmd->add_option("-o,--output", opt->output, "Output .prm file")->required();
   cmd->add_option("--bits", opt->bits, "Quantization bits per coordinate (8..20)")->check(CLI::Range(8, 20));
   cmd->add_option("--max-version", opt->max_version,
-                  "Newest format the stream may need, for older decoders: 1.4 (default), 1.3 (no patch contexts, spec "
+                  "Newest format the stream may need, for older decoders: 1.5 (default), 1.4 (one grid size for every "
+                  "patch, spec §8.4.2), 1.3 (no patch contexts either, "
                   "§8.4.1), 1.2 (no CLERS seam context either, §6.5.2; a general-path stream is then 1.0)")
-      ->check(CLI::IsMember({"1.2", "1.3", "1.4"}));
+      ->check(CLI::IsMember({"1.2", "1.3", "1.4", "1.5"}));
   cmd->add_flag("--json", opt->json, kJsonFlagHelp);
   cmd->callback([opt] {
     ReadReport rr;

@@ -26,9 +26,11 @@ void add_pack_command(CLI::App& root) {
     double target = 0, max_error = 0, grid = 0, grid_fraction = 0, tau = 0.2, lambda = 0, step_scale = 0;
     double boundary_simplification = pipeline::PackOptions{}.boundary_simplification;
     int bits = 0, sweeps = 4, effort = pipeline::kDefaultEffort;
-    std::string max_version = "1.4", mode = "auto";
+    std::string max_version = "1.5", mode = "auto";
     size_t samples = 0;
-    bool json = false, no_fit = false, round_heights = false, fallback = false, fill_holes = false, refine = false;
+    bool json = false, no_fit = false, round_heights = false, fallback = false, fill_holes = false, refine = false,
+         adaptive = false;
+    double adaptive_exponent = 1.0 / 6.0;
     double error_flip_weight = remesh::kDefaultErrorFlipWeight;
   };
   auto opt = std::make_shared<Options>();
@@ -95,12 +97,21 @@ void add_pack_command(CLI::App& root) {
                     std::to_string(pipeline::kRefineShare * pipeline::kDefaultMaxErrorPerTarget).substr(0, 3) +
                     " x --target-error from the input (thin tips the grid cuts off; bench/README.md 'Worst-case "
                     "error': max halved on the horse, +3% bytes, but +14% bytes for nothing on CGAL's bunny00)");
+  cmd->add_flag("--adaptive", opt->adaptive,
+                "A grid size per relief (format 1.5, spec §8.4.2): each relief's grid scaled by its measured curvature "
+                "(equal slope, remesh/relief_grids.h), the search scaling them together to the target; ignored with "
+                "--max-version below 1.5");
+  cmd->add_option("--adaptive-exponent", opt->adaptive_exponent,
+                  "With --adaptive: a relief's grid goes as its mean squared curvature to the minus this power (default "
+                  "1/6: RMS error ~ g^2, bytes ~ g^-2)")
+      ->check(CLI::Range(0.01, 1.0));
   cmd->add_flag("--round-heights", opt->round_heights,
                 "Round every height to the nearest step (no rate-distortion choice; for comparison)");
   cmd->add_option("--max-version", opt->max_version,
-                  "Newest format the stream may need, for older decoders: 1.4 (default), 1.3 (no patch contexts, spec "
+                  "Newest format the stream may need, for older decoders: 1.5 (default), 1.4 (one grid size for every "
+                  "patch, spec §8.4.2), 1.3 (no patch contexts either, "
                   "§8.4.1), 1.2 (no CLERS seam context either, §6.5.2)")
-      ->check(CLI::IsMember({"1.2", "1.3", "1.4"}));
+      ->check(CLI::IsMember({"1.2", "1.3", "1.4", "1.5"}));
   cmd->add_flag("--fallback", opt->fallback,
                 "With a .glb/.gltf output: also store the decoded geometry uncompressed, so that loaders without "
                 "PRM_mesh_compression show it (the extension is then not required)");
@@ -133,6 +144,8 @@ void add_pack_command(CLI::App& root) {
     po.error_flip_weight = opt->error_flip_weight;
     po.height_lambda = opt->lambda;
     po.optimize_heights = !opt->round_heights;
+    po.adaptive = opt->adaptive;
+    po.adaptive_exponent = opt->adaptive_exponent;
     po.height_sweeps = opt->sweeps;
     po.max_minor = opt->max_version[2] - '0';
     po.effort = opt->effort;
@@ -248,6 +261,8 @@ void add_pack_command(CLI::App& root) {
       if (!general) {
         j["grid_size"] = g;
         j["grid_steps"] = r.remesh.prm.lattice.A;
+        j["grid_sizes"] = rep.grid_sizes;  // §8.4.2: 1, or 2..8 with --adaptive
+        j["adaptive"] = opt->adaptive;
         j["tau"] = opt->tau;
         j["step"] = r.remesh.prm.frame.step;
         j["remesh_rounds"] = r.remesh_rounds;

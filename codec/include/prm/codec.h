@@ -44,6 +44,7 @@ constexpr uint8_t kFormatMinorPrm = 1;        // PRM streams of format 1.1 (§3.
 constexpr uint8_t kFormatMinorPredicted = 2;  // PRM streams without the seam context: format 1.2 (§3.2, §7.3, §9.7)
 constexpr uint8_t kFormatMinorSeam = 3;       // streams with the CLERS seam context: format 1.3 (§3.2, §6.5.2)
 constexpr uint8_t kFormatMinorPatchContexts = 4;  // PRM streams with the patch contexts: format 1.4 (§3.2, §8.4.1, §9.7.4)
+constexpr uint8_t kFormatMinorPatchGrids = 5;  // PRM streams with a grid size per patch: format 1.5 (§3.2, §8.4.2)
 
 enum class Error : uint8_t {
   ok = 0,
@@ -123,6 +124,7 @@ struct EncodeReport {
   uint32_t regular_patches = 0;
   uint32_t patch_vertices = 0;   // vertices whose positions the patches section carries
   uint32_t predicted_patches = 0;  // patches whose heights are coded by linear prediction (§9.7)
+  uint32_t grid_sizes = 0;       // §8.4.2 grid sizes the stream holds: 1, or 2..8 with the grid table (format 1.5)
   int height_depth = -1;         // §9.4 0..6 (difference patches), 7 (linear prediction, §9.7); -1: not a PRM stream
   int overlap_depth = -1;        // §9.7.2 with height_depth 7: the self-overlapping patches' difference depth
   // Decoded vertex k is input vertex vertex_order[k]; decoded triangle k is input triangle triangle_order[k], with
@@ -154,6 +156,14 @@ constexpr int kLinearPredictionDepth = 7;
 // (docs/ARCHITECTURE.md: lattice point (i, j) of axis pair k at (U, W) = (A i + B j, C j), quantized units).
 struct PrmOptions {
   int64_t grid = 0;       // the lattice's grid size A in quantized units, 2 .. 2^bits
+  // §8.4.2 A grid size per patch (format 1.5: Flags bit 4): further grid sizes the mesh's lattices use, each
+  // 2 .. 2^bits, distinct from `grid` and from each other, at most 7. A triangle is regular on the first of grid,
+  // extra_grids... it fits (§7.1). The stream's grid table holds the extra grids its regular triangles use; none
+  // used (or none given): no table, the stream of the single grid. Empty: one grid for the whole mesh.
+  std::vector<int64_t> extra_grids;
+  // false: extra_grids are not used (a stream of one grid, format 1.4 or older: the triangles on the other grids are
+  // coded as irregular).
+  bool patch_grids = true;
   // §9.4 The heights' coding: 0..6 levels of difference patches (the paper's), 7 linear prediction (§9.7), -1 the
   // encoder tries them all and keeps the smallest.
   int height_depth = -1;

@@ -15,6 +15,9 @@ namespace prm::codec {
 // §3.3 Position_Bits: B, 8 <= B <= 20.
 constexpr int kMinPositionBits = 8;
 constexpr int kMaxPositionBits = 20;
+// §8.4.2 The grid table (format 1.5): Grid_Size and at most 7 extra grid sizes.
+constexpr int kMaxExtraGrids = 7;
+constexpr int kMaxGridSizes = kMaxExtraGrids + 1;
 
 // ---------------------------------------------------------------------------------------------------------------
 // §10.1 The quantization frame: q = floor((p - origin) / step + 0.5) clamped to [0, 2^bits - 1]; a quantized value

@@ -19,15 +19,16 @@ codec::Result<std::vector<uint8_t>> encode_prm_mesh(const remesh::PrmMesh& prm, 
 
 // Encodes any mesh file's contents: a PRM (its PLY carries the prm-frame comment and lattice labels) through
 // encode_prm_mesh, anything else through the general path at `bits` bits. `max_minor`: the newest format 1.N the
-// stream may need (2: neither the seam context of 1.3 nor the patch contexts of 1.4; 3: no patch contexts).
+// stream may need (2: neither the seam context of 1.3 nor the patch contexts of 1.4; 3: no patch contexts; 4: one
+// grid size, no grid table of 1.5).
 codec::Result<std::vector<uint8_t>> encode_any_mesh(const Mesh& mesh, int bits, codec::EncodeReport* report,
                                                     bool* was_prm = nullptr,
-                                                    int max_minor = codec::kFormatMinorPatchContexts);
+                                                    int max_minor = codec::kFormatMinorPatchGrids);
 
 // Encodes a mesh through the general path (spec §6, §10) at `bits` bits, whatever it carries (encode_any_mesh's
 // branch for anything that is not a PRM; pack's general candidate). `max_minor` as above (below 3: no seam context).
 codec::Result<std::vector<uint8_t>> encode_general_mesh(const Mesh& mesh, int bits, codec::EncodeReport* report,
-                                                        int max_minor = codec::kFormatMinorPatchContexts);
+                                                        int max_minor = codec::kFormatMinorPatchGrids);
 
 // A decoded stream as a prm::Mesh (dequantized double positions).
 Mesh to_mesh(const codec::DecodedMesh& decoded);

@@ -86,7 +86,7 @@ struct PackOptions {
   double height_lambda = 0;
   int height_sweeps = 4;  // codec::PrmOptions::height_sweeps: the choice refined over all heights (0: one by one)
   // The newest format 1.N the stream may need (encode_any_mesh): 4, or 3 (no patch contexts), or 2 (no seam context).
-  int max_minor = codec::kFormatMinorPatchContexts;
+  int max_minor = codec::kFormatMinorPatchGrids;
   int effort = kDefaultEffort;  // kMinEffort..kMaxEffort (see above)
   // Close every boundary loop with a fan before remeshing (RepairOptions::fill_holes; the paper's bunny protocol).
   // The output is then closed: on an open input, mode automatic is prm and mode general std::invalid_argument.
@@ -97,6 +97,11 @@ struct PackOptions {
   // simplification, simplify_boundary) within this fraction of the target error (times the diagonal); 0: the
   // boundary vertices are all kept. The error is still measured against the input as it came.
   double boundary_simplification = 0;
+  // A grid size per relief (issue 23, spec §8.4.2, format 1.5; remesh/relief_grids.h): each relief's grid scaled by
+  // its measured detail (equal slope), the search scaling them together to the target. Needs max_minor >= 5
+  // (otherwise ignored: one grid). false: one grid for the whole surface.
+  bool adaptive = false;
+  double adaptive_exponent = 1.0 / 6.0;  // remesh::ReliefGridOptions::exponent
 };
 
 // What one effort level does (effort_plan()).

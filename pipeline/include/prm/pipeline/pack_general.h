@@ -43,6 +43,6 @@ struct GeneralPack {
 // format 1.N the stream may need (PackOptions::max_minor; below 3, no CLERS seam context, §6.5.2). max_target > 0:
 // the decoded mesh's maximum (Hausdorff) distance must be at most that too (PackOptions::max_error), also alone.
 GeneralPack pack_general(const Mesh& input, const MetroReference& reference, double target, int bits,
-                         int max_minor = codec::kFormatMinorPatchContexts, double max_target = 0);
+                         int max_minor = codec::kFormatMinorPatchGrids, double max_target = 0);
 
 }  // namespace prm::pipeline

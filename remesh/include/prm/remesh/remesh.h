@@ -28,6 +28,11 @@ struct RemeshOptions {
   // it as irregular vertices (ResampleOptions::max_deviation). 0: max_error (0 too: none).
   double refine_error = 0;
   double initial_grid_size = 0;  // with target_error: where the search starts (model units; 0: 1.5 mean edges)
+  // A grid size per relief (spec §8.4.2, format 1.5): relief r (an id of the layout) is resampled with the grid
+  // round(g x relief_grid_scale[r]) quantization steps (at least 2, at most 2^bits), g being the grid of the options
+  // above or of the search, which then scales every relief's grid together. At most kMaxReliefGrids distinct
+  // values. Empty: one grid g for every relief.
+  std::vector<double> relief_grid_scale;
   int max_search_steps = 8;
   // With target_error: the search stops once the finest failing grid is at most this fraction (or one step) above
   // the coarsest that meets the target.

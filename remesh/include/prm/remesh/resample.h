@@ -32,6 +32,10 @@ constexpr double kDefaultErrorFlipWeight = 2.0;
 struct ResampleOptions {
   QuantFrame frame;
   int64_t grid = 0;                    // grid size A in quantization steps (>= 2)
+  // A grid size per relief id (spec §8.4.2, format 1.5), in quantization steps; empty: `grid` for every relief. At
+  // most kMaxReliefGrids distinct sizes; reliefs of one axis pair and different grid sizes get different lattices
+  // and are joined at their seam like reliefs of different pairs.
+  std::vector<int64_t> relief_grid;
   double max_normal_angle_deg = 90.0;  // paper: no triangle may turn more than 90 degrees away
   bool parallel = true;                // resample reliefs concurrently
   bool fit_heights = true;             // move lattice vertices along their axes to the least-squares fit
@@ -65,11 +69,16 @@ struct ResampleStats {
 };
 
 // The piecewise regular mesh and its labels.
+// The most distinct grid sizes of one PRM (the codec's grid table, spec §8.4.2).
+constexpr size_t kMaxReliefGrids = codec::kMaxGridSizes;
+
 struct PrmMesh {
   Mesh mesh;  // positions, and the properties/comments of docs/ARCHITECTURE.md "The PRM file"
   QuantFrame frame;
-  HexLattice lattice;
+  HexLattice lattice;                   // the grid size of ResampleOptions::grid (the stream's Grid_Size)
   std::vector<int> relief_axis;         // per relief id
+  std::vector<int64_t> relief_grid;     // per relief id: its grid size in quantization steps (spec §8.4.2)
+  int64_t grid_of(size_t relief) const { return relief < relief_grid.size() ? relief_grid[relief] : lattice.A; }
   std::vector<int32_t> vertex_relief;   // relief of a grid vertex, -1 otherwise
   std::vector<int32_t> lattice_i, lattice_j;
   std::vector<int32_t> face_relief;     // relief of the face's grid vertices when all agree, -1 otherwise

@@ -1,0 +1,84 @@
+#include "prm/remesh/relief_grids.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+#include <unordered_map>
+
+#include "prm/remesh/resample.h"
+#include "prm/vec3.h"
+
+namespace prm::remesh {
+
+ReliefDetail measure_relief_detail(const Mesh& input, const ReliefLayout& layout) {
+  const size_t nf = input.triangles.size();
+  std::vector<Vec3> normal(nf), centroid(nf);
+  std::vector<double> area(nf), integrated(nf, 0.0);
+  for (size_t f = 0; f < nf; ++f) {
+    const Tri& t = input.triangles[f];
+    const Vec3 n2 = triangle_normal_area2(input.positions[t[0]], input.positions[t[1]], input.positions[t[2]]);
+    area[f] = 0.5 * norm(n2);
+    normal[f] = area[f] > 0 ? n2 * (0.5 / area[f]) : Vec3{0, 0, 0};
+    centroid[f] = (input.positions[t[0]] + input.positions[t[1]] + input.positions[t[2]]) * (1.0 / 3.0);
+  }
+  // Each interior edge once: dihedral^2 x length / centroid distance, half to each side (an integral of the
+  // squared curvature over the strip between the centroids).
+  std::unordered_map<uint64_t, uint32_t> first;  // undirected edge -> the first face seen
+  first.reserve(3 * nf);
+  for (uint32_t f = 0; f < nf; ++f)
+    for (size_t k = 0; k < 3; ++k) {
+      const uint32_t a = input.triangles[f][k], b = input.triangles[f][(k + 1) % 3];
+      const uint64_t key = uint64_t{std::min(a, b)} << 32 | std::max(a, b);
+      const auto [it, inserted] = first.emplace(key, f);
+      if (inserted) continue;
+      const uint32_t g = it->second;
+      const double d = norm(centroid[f] - centroid[g]);
+      if (!(d > 0) || !(area[f] > 0) || !(area[g] > 0)) continue;
+      const double angle = std::acos(std::clamp(dot(normal[f], normal[g]), -1.0, 1.0));
+      const double k2 = 0.5 * angle * angle * norm(input.positions[a] - input.positions[b]) / d;
+      integrated[f] += k2;
+      integrated[g] += k2;
+    }
+  ReliefDetail out;
+  out.area.assign(layout.reliefs.size(), 0.0);
+  out.curvature2.assign(layout.reliefs.size(), 0.0);
+  const Mesh& refined = layout.mesh;
+  for (size_t f = 0; f < refined.triangles.size(); ++f) {
+    const Tri& t = refined.triangles[f];
+    const double a = triangle_area(refined.positions[t[0]], refined.positions[t[1]], refined.positions[t[2]]);
+    const size_t s = layout.source_face.empty() ? f : static_cast<size_t>(layout.source_face[f]);
+    const size_t r = static_cast<size_t>(layout.face_relief[f]);
+    out.area[r] += a;
+    if (area[s] > 0) out.curvature2[r] += a * integrated[s] / area[s];
+  }
+  for (size_t r = 0; r < out.area.size(); ++r)
+    if (out.area[r] > 0) out.curvature2[r] /= out.area[r];
+  return out;
+}
+
+std::vector<double> allocate_relief_grid_scales(const ReliefDetail& detail, const ReliefGridOptions& options) {
+  if (options.coarsest_level - options.finest_level + 1 > static_cast<int>(kMaxReliefGrids) ||
+      options.finest_level > 0 || options.coarsest_level < 0 || options.levels_per_octave < 1 || !(options.exponent > 0))
+    throw std::invalid_argument("relief grid levels: at most " + std::to_string(kMaxReliefGrids) + ", around 0");
+  const size_t n = detail.curvature2.size();
+  double top = 0, total = 0, log_sum = 0;
+  for (double c : detail.curvature2) top = std::max(top, c);
+  // A flat relief's curvature is floored, so that it gets the coarsest level rather than an infinite grid.
+  const double floor = std::max(top * 1e-9, 1e-300);
+  for (size_t r = 0; r < n; ++r) {
+    total += detail.area[r];
+    log_sum += detail.area[r] * std::log(std::max(detail.curvature2[r], floor));
+  }
+  const double reference = total > 0 ? std::exp(log_sum / total) : 1.0;
+  std::vector<double> scale(n, 1.0);
+  for (size_t r = 0; r < n; ++r) {
+    const double s = std::pow(std::max(detail.curvature2[r], floor) / reference, -options.exponent);
+    const int k = std::clamp(static_cast<int>(std::lround(std::log2(s) * options.levels_per_octave)),
+                             options.finest_level, options.coarsest_level);
+    scale[r] = std::exp2(static_cast<double>(k) / options.levels_per_octave);
+  }
+  return scale;
+}
+
+}  // namespace prm::remesh
