@@ -262,26 +262,21 @@ def do_mesh(ctx, mesh):
             dra[str(qp)] = {"qp": qp, "bytes": size, "rms": rms, "max": mx}
             save()
 
+    def per_budget(key, what, point_at):  # one point of a baseline at each PRM stream's bytes, cached
+        done = res.setdefault(key, {})
+        for b in budgets:
+            if str(b) not in done:
+                print(f"[rd] {stem(mesh)}: {what} at {b} B", file=sys.stderr, flush=True)
+                done[str(b)] = point_at(b)
+                save()
+
     if not a.no_sd:
         simp = Simplified(ctx, mesh, ".ply")
-        sd = res.setdefault("sd", {})
-        for b in budgets:
-            if str(b) in sd:
-                continue
-            print(f"[rd] {stem(mesh)}: simplify + Draco at {b} B", file=sys.stderr, flush=True)
-            sd[str(b)] = sd_point(ctx, mesh, full, simp, b)
-            save()
-
+        per_budget("sd", "simplify + Draco", lambda b: sd_point(ctx, mesh, full, simp, b))
     if a.gltfpack and os.path.exists(a.gltfpack):
         obj = os.path.join(ctx.tmp, stem(mesh) + "_full.obj")
         run([a.simplify, mesh, "1000000000", obj])
-        gp = res.setdefault("gltfpack", {})
-        for b in budgets:
-            if str(b) in gp:
-                continue
-            print(f"[rd] {stem(mesh)}: gltfpack at {b} B", file=sys.stderr, flush=True)
-            gp[str(b)] = gltfpack_point(ctx, mesh, full, obj, b)
-            save()
+        per_budget("gltfpack", "gltfpack", lambda b: gltfpack_point(ctx, mesh, full, obj, b))
     elif a.gltfpack:
         print(f"[rd] gltfpack {a.gltfpack} not found: no gltfpack points (npm ci in bench/gltf)", file=sys.stderr)
     save()
@@ -321,6 +316,23 @@ def report(a, results):
                 row.append(f"-qp {fit[0]['qp']}: {fit[0]['bytes']} B ({fit[0]['bytes'] / p['bytes']:.1f}x)" if fit
                            else "none of -qp %s" % ",".join(str(d["qp"]) for d in dra))
                 lines.append("| " + " | ".join(row) + " |")
+    lines += ["", "Issue 23's first target per mesh and PRM curve, over the points with 5e-5 <= E <= 5e-4 (RMS ratio at most "
+              "0.70 at every point; max no worse than simplify + Draco's at every point):", ""]
+    for res in results:
+        name = stem(res["mesh"])
+        for label, pts in res.get("prm", {}).items():
+            ratios, max_ok, n = [], 0, 0
+            for e, p in pts.items():
+                sd = res.get("sd", {}).get(str(p.get("bytes")), {})
+                if not 5e-5 <= float(e) <= 5e-4 or "rms" not in sd or "bytes" not in p:
+                    continue
+                n += 1
+                ratios.append(p["rms"] / sd["rms"])
+                max_ok += p["max"] <= sd["max"]
+            if n:
+                lines.append(f"- {name}, {label}: RMS ratio {min(ratios):.2f}..{max(ratios):.2f} over {n} points "
+                             f"({'met' if max(ratios) <= 0.70 else 'missed'}); max no worse at {max_ok} of {n} "
+                             f"({'met' if max_ok == n else 'missed'})")
     lines.append("")
     lines.append("Draco alone (-cl 10) on each whole mesh:")
     lines.append("")
@@ -391,6 +403,8 @@ def main():
     p.add_argument("--no-sd", action="store_true")
     p.add_argument("--no-draco", action="store_true")
     p.add_argument("--report", action="store_true", help="write OUT/rd_table.md from every mesh given")
+    p.add_argument("--report-only", action="store_true",
+                   help="run nothing: the table and plots from the cached OUT/<mesh>/results.json")
     p.add_argument("--plot", metavar="DIR", help="one PNG per mesh into DIR")
     a = p.parse_args()
     if not a.meshes:
@@ -411,13 +425,20 @@ def main():
     results = []
     try:
         for m in a.meshes:
-            results.append(do_mesh(ctx, m))
+            if a.report_only:
+                rpath = os.path.join(a.out, stem(m), "results.json")
+                if not os.path.exists(rpath):
+                    print(f"[rd] {m}: no {rpath}, left out", file=sys.stderr)
+                    continue
+                results.append(json.load(open(rpath)))
+            else:
+                results.append(do_mesh(ctx, m))
             if a.plot:
                 os.makedirs(a.plot, exist_ok=True)
                 print(f"[rd] {plot(a, results[-1], a.plot)}", file=sys.stderr)
     finally:
         shutil.rmtree(ctx.tmp, ignore_errors=True)
-    if a.report:
+    if a.report or a.report_only:
         table = report(a, results)
         with open(os.path.join(a.out, "rd_table.md"), "w") as f:
             f.write(table)
