@@ -101,6 +101,7 @@ def prm_point(ctx, mesh, mdir, curve, e):
     if "check_rms" not in point:  # independent check: prm compare of the decoded stream against the original
         point["check_rms"], point["check_max"] = ctx.compare(mesh, base + ".prm")
     point["stream_bytes"] = os.path.getsize(base + ".prm")
+    point["mode"] = j.get("mode")
     return point
 
 
@@ -288,6 +289,14 @@ def fmt(x):
     return "%.2e" % x
 
 
+def pack_mode(a, mesh, label, e):
+    """pack's mode of a cached point ("prm", or "general" where no piecewise regular mesh was made)."""
+    try:
+        return json.load(open(os.path.join(a.out, stem(mesh), slug(label), e + ".json"))).get("mode")
+    except (OSError, ValueError):
+        return None
+
+
 def report(a, results):
     lines = ["| mesh | PRM curve | E | bytes | PRM RMS | PRM max | S+D -qp / tris | S+D bytes | S+D RMS | S+D max "
              "| RMS ratio (<= 0.70) | max no worse | gltfpack RMS / max | Draco alone at PRM's RMS |",
@@ -303,7 +312,9 @@ def report(a, results):
                     continue
                 sd = res.get("sd", {}).get(str(p["bytes"]), {})
                 gp = res.get("gltfpack", {}).get(str(p["bytes"]), {})
-                row = [name, label, e, str(p["bytes"]), fmt(p["rms"]), fmt(p["max"])]
+                mode = p.get("mode") or pack_mode(a, res["mesh"], label, e)
+                row = [name, label, e + ("" if mode in ("prm", None) else f" ({mode})"), str(p["bytes"]),
+                       fmt(p["rms"]), fmt(p["max"])]
                 if "rms" in sd:
                     row += [f"{sd['qp']} / {sd['triangles']}" + (" sloppy" if sd.get("sloppy") else ""),
                             str(sd["bytes"]), fmt(sd["rms"]), fmt(sd["max"]), "%.2f" % (p["rms"] / sd["rms"]),
