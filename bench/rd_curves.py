@@ -323,7 +323,7 @@ def report(a, results):
                     row += [sd.get("failed", "not run"), "", "", "", "", ""]
                 row.append(f"{fmt(gp['rms'])} / {fmt(gp['max'])} ({gp['bytes']} B)" if "rms" in gp
                            else gp.get("failed", "not run"))
-                fit = [d for d in dra if d["rms"] <= p["rms"]]
+                fit = sorted((d for d in dra if d["rms"] <= p["rms"]), key=lambda d: d["bytes"])  # the smallest
                 row.append(f"-qp {fit[0]['qp']}: {fit[0]['bytes']} B ({fit[0]['bytes'] / p['bytes']:.1f}x)" if fit
                            else "none of -qp %s" % ",".join(str(d["qp"]) for d in dra))
                 lines.append("| " + " | ".join(row) + " |")
