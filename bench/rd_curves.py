@@ -22,7 +22,8 @@ against RMS and against max).
 Usage (from the repository root, after building prm and prm_bench_simplify, and `npm ci` in bench/gltf):
   nice -n 10 python3 bench/rd_curves.py MESH... [--curve "PRM uniform:build/tools/prm/prm:"] [--curve ...]
       [--errors 2e-5,5e-5,1e-4,2e-4,5e-4,1e-3] [--out build/rd] [--report] [--plot bench/rd]
-Exit codes: 0 done (points that failed are named in the table and on stderr), 1 usage, 2 a needed program missing.
+Exit codes: 0 done (points that failed are named in the table and on stderr), 2 usage (argparse's), 3 a needed
+program missing, 1 a tool failed unexpectedly (the traceback names the command).
 """
 import argparse
 import json
@@ -55,9 +56,10 @@ class Ctx:
         self.prm = a.prm
         self.tmp = tempfile.mkdtemp(prefix="rd_")
 
-    def compare(self, original, decoded):
-        """prm compare ORIGINAL DECODED: (rms_rel, max_rel) of the symmetric distance."""
-        r = run([self.prm, "compare", "--json", original, decoded])
+    def compare(self, original, decoded, prm=None):
+        """prm compare ORIGINAL DECODED: (rms_rel, max_rel) of the symmetric distance (a .prm stream is compared
+        by the prm that wrote it, which reads its format version)."""
+        r = run([prm or self.prm, "compare", "--json", original, decoded])
         if r.returncode != 0:
             raise RuntimeError(f"prm compare {original} {decoded}: {r.stderr.strip()[-300:]}")
         s = json.loads(r.stdout)["symmetric"]
@@ -98,8 +100,8 @@ def prm_point(ctx, mesh, mdir, curve, e):
     j = json.load(open(base + ".json"))
     point["bytes"] = j["bytes"]["total"]
     point["rms"], point["max"] = j["distance"]["rms_rel"], j["distance"]["max_rel"]
-    if "check_rms" not in point:  # independent check: prm compare of the decoded stream against the original
-        point["check_rms"], point["check_max"] = ctx.compare(mesh, base + ".prm")
+    # independent check: prm compare of the decoded stream against the original
+    point["check_rms"], point["check_max"] = ctx.compare(mesh, base + ".prm", curve["prm"])
     point["stream_bytes"] = os.path.getsize(base + ".prm")
     point["mode"] = j.get("mode")
     return point
@@ -427,11 +429,11 @@ def main():
     for prog in [a.prm, a.simplify] + [c["prm"] for c in a.curve]:
         if not os.path.exists(prog):
             print(f"rd_curves: {prog} not found (build it first)", file=sys.stderr)
-            return 2
+            return 3
     for prog in ("draco_encoder", "draco_decoder") + (("gnuplot",) if a.plot else ()):
         if not shutil.which(prog):
             print(f"rd_curves: {prog} not found (apt-get install draco gnuplot-nox)", file=sys.stderr)
-            return 2
+            return 3
     ctx = Ctx(a)
     results = []
     try:
