@@ -262,6 +262,7 @@ void AabbTree::build(const std::vector<Vec3>& positions, const std::vector<Tri>&
     pairs_[0].hi[k][1] = -HUGE_VALF;
   }
   pairs_[0].first[1] = pairs_[0].count[1] = 0;
+  order_depth_first();
 
   triangles_.resize(n);
   slot_.resize(n);
@@ -272,6 +273,26 @@ void AabbTree::build(const std::vector<Vec3>& positions, const std::vector<Tri>&
       slot_[ids_[k]] = static_cast<uint32_t>(k);
     }
   });
+}
+
+void AabbTree::order_depth_first() {
+  std::vector<NodePair> ordered;
+  ordered.reserve(pairs_.size());
+  std::vector<uint32_t> index_of(pairs_.size(), 0);  // an old pair's new index
+  std::vector<uint32_t> todo{0};                      // old pair indices; the root pair stays first
+  while (!todo.empty()) {
+    const uint32_t old = todo.back();
+    todo.pop_back();
+    index_of[old] = static_cast<uint32_t>(ordered.size());
+    ordered.push_back(pairs_[old]);
+    // Side 1 pushed first, so that side 0's subtree follows its parent directly (the root's side 1 is unused).
+    for (int side = 1; side >= 0; --side)
+      if (pairs_[old].count[side] == 0 && !(old == 0 && side == 1)) todo.push_back(pairs_[old].first[side] / 2);
+  }
+  for (NodePair& pair : ordered)
+    for (int side = 0; side < 2; ++side)
+      if (pair.count[side] == 0 && pair.first[side] != 0) pair.first[side] = 2 * index_of[pair.first[side] / 2];
+  pairs_ = std::move(ordered);
 }
 
 namespace {

@@ -130,9 +130,10 @@ SamplingOptions sampling_options(const MetroOptions& o, size_t count) {
 }
 
 size_t sample_count(const MetroOptions& o, const Mesh& a, const Mesh& b) {
-  return o.samples ? o.samples
-                   : static_cast<size_t>(o.samples_per_face *
-                                         static_cast<double>(std::max(a.triangles.size(), b.triangles.size())));
+  if (o.samples) return o.samples;
+  const size_t n =
+      static_cast<size_t>(o.samples_per_face * static_cast<double>(std::max(a.triangles.size(), b.triangles.size())));
+  return o.max_samples > 0 ? std::min(n, o.max_samples) : n;
 }
 
 DistanceReport combine(const OneSidedDistance& ab, const OneSidedDistance& ba, double diagonal) {

@@ -155,6 +155,23 @@ TEST(MetroDistance, DefaultIsTenSamplesPerFaceOfTheLargerMesh) {
   EXPECT_NEAR(static_cast<double>(r.b_to_a.samples), 12800.0, 2.0);
 }
 
+// MetroOptions::max_samples caps samples_per_face x faces (pack's search estimates on large inputs), and only that:
+// below the cap, and with an explicit sample count, the counts are as without it.
+TEST(MetroDistance, MaxSamplesCapsThePerFaceCount) {
+  const Mesh a = test::icosphere(2), b = test::icosphere(3, 1.01);  // 320 and 1280 faces
+  MetroOptions o;
+  o.max_samples = 5000;
+  const DistanceReport capped = metro_distance(a, b, o);
+  EXPECT_NEAR(static_cast<double>(capped.a_to_b.samples), 5000.0, 2.0);
+  EXPECT_NEAR(static_cast<double>(capped.b_to_a.samples), 5000.0, 2.0);
+  EXPECT_NEAR(capped.rms, metro_distance(a, b).rms, 0.05 * capped.rms);
+  o.max_samples = 20000;
+  EXPECT_NEAR(static_cast<double>(metro_distance(a, b, o).a_to_b.samples), 12800.0, 2.0);
+  o.max_samples = 5000;
+  o.samples = 8000;
+  EXPECT_NEAR(static_cast<double>(metro_distance(a, b, o).a_to_b.samples), 8000.0, 2.0);
+}
+
 TEST(MetroDistance, MeshLabBudget) {
   const Mesh a = test::icosphere(3), b = test::icosphere(3, 1.02);
   MetroOptions o;

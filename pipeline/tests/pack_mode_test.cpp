@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <vector>
 
 #include "prm/error.h"
 #include "prm/mesh_io.h"
@@ -189,5 +190,53 @@ TEST_P(PackModeAuto, KeepsTheSmallerStream) {
 }
 
 INSTANTIATE_TEST_SUITE_P(SmallMeshes, PackModeAuto, ::testing::Values("fandisk.obj", "spot.obj"));
+
+// pack_general measures only the bit depths whose outcome it cannot tell otherwise (issue 21): its displacement bound
+// is at least the Metro maximum at every depth, and its choice and reported distances are those of Metro at every
+// depth (measured here one by one, independently of its shortcuts), at targets on both sides of its depths' errors.
+TEST(PackGeneral, BitDepthIsMetrosChoice) {
+  const prm::Mesh input = prm::read_mesh(std::string(PRM_SHARED_MESHES) + "/spot.obj");
+  const prm::MetroReference reference(&input);
+  struct Depth {
+    bool zero_area;
+    double rms, max;
+  };
+  std::vector<Depth> depths;
+  for (int b = prm::pipeline::kMinGeneralBits; b <= prm::pipeline::kMaxGeneralBits; ++b) {
+    prm::codec::EncodeReport report;
+    const auto encoded = prm::pipeline::encode_general_mesh(input, b, &report);
+    ASSERT_TRUE(encoded.ok()) << encoded.status.message;
+    const auto decoded = prm::codec::decode(encoded.value.data(), encoded.value.size());
+    ASSERT_TRUE(decoded.ok()) << decoded.status.message;
+    const prm::DistanceReport d = reference.compare(prm::pipeline::to_mesh(decoded.value));
+    depths.push_back({prm::pipeline::count_zero_area_triangles(decoded.value) > 0, d.rel(d.rms), d.rel(d.max)});
+    // At a fixed depth pack_general measures and reports the bound beside the distances (a zero-area triangle is
+    // refused).
+    if (depths.back().zero_area) {
+      EXPECT_THROW(prm::pipeline::pack_general(input, reference, 0, b), prm::remesh::TargetNotReached);
+      continue;
+    }
+    const prm::pipeline::GeneralPack fixed = prm::pipeline::pack_general(input, reference, 0, b);
+    ASSERT_TRUE(fixed.measured);
+    ASSERT_GE(fixed.bound, 0) << b << " bits: spot's decoded triangles are its own";
+    EXPECT_GE(fixed.bound, fixed.max) << b << " bits";
+    EXPECT_EQ(fixed.max, d.rel(d.max));
+  }
+  int skipped = 0;
+  for (double target : {1e-3, 2e-4, 5e-5, 1e-5}) {
+    int expected = -1;
+    for (int b = prm::pipeline::kMinGeneralBits; b <= prm::pipeline::kMaxGeneralBits && expected < 0; ++b) {
+      const Depth& d = depths[static_cast<size_t>(b - prm::pipeline::kMinGeneralBits)];
+      if (!d.zero_area && d.rms <= target) expected = b;
+    }
+    ASSERT_GT(expected, 0);
+    const prm::pipeline::GeneralPack g = prm::pipeline::pack_general(input, reference, target, 0);
+    EXPECT_EQ(g.bits, expected) << "target " << target;
+    EXPECT_TRUE(g.measured);
+    EXPECT_EQ(g.rms, depths[static_cast<size_t>(expected - prm::pipeline::kMinGeneralBits)].rms);
+    for (const auto& t : g.tried) skipped += t.rms < 0;
+  }
+  EXPECT_GT(skipped, 0) << "every depth was measured: the bound never decided";
+}
 
 }  // namespace

@@ -69,6 +69,9 @@ class AabbTree {
   };
 
   void build(const std::vector<Vec3>& positions, const std::vector<Tri>& triangles);
+  // Renumbers the pairs in depth-first order (side 0's subtree right after its parent): the parallel build numbers
+  // its upper levels in the order its threads claimed them. The tree, and every query's order and answer, stay the same.
+  void order_depth_first();
   // Depth-first search for a point closer than sqrt(best2); updates hit when it finds one.
   void search(const Vec3& p, Hit& hit, double best2) const;
 

@@ -31,6 +31,9 @@ struct MetroOptions {
   // With samples = 0: this many per face (Metro's default, 10). Fewer make a cheaper estimate in which the vertex
   // samples weigh more (`prm pack` searches with fewer at its lower efforts and reports with 10).
   double samples_per_face = 10;
+  // With samples = 0 and max_samples > 0: at most this many per surface (a cheaper estimate for a large mesh, whose
+  // samples_per_face x faces would be tens of millions; `prm pack`'s search estimates, issue 21). 0: no cap.
+  size_t max_samples = 0;
   SampleBudget budget = SampleBudget::Metro;
   uint64_t seed = 1;  // random positions of the face samples (both surfaces use the same seed)
   bool sample_vertices = true;
