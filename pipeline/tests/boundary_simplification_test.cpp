@@ -6,6 +6,7 @@
 #include <cmath>
 #include <set>
 
+#include "grid_sheet.h"
 #include "prm/boundary_deviation.h"
 #include "prm/mesh_validate.h"
 #include "prm/pipeline/boundary_simplification.h"
@@ -16,17 +17,9 @@ using prm::Mesh;
 
 // An n x n grid of the unit square, z = 0, its border rippled by `ripple` (in y on the side y = 0).
 Mesh sheet(int n, double ripple) {
-  Mesh m;
-  for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i)
-      m.positions.push_back({double(i) / n, double(j) / n + (j == 0 ? ripple * ((i % 2) ? 1 : -1) : 0.0), 0.0});
-  auto id = [n](int i, int j) { return static_cast<uint32_t>(j * (n + 1) + i); };
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-    }
-  return m;
+  return prm::test::grid_sheet(n, [ripple](int i, int j, double x, double y) {
+    return prm::Vec3{x, y + (j == 0 ? ripple * ((i % 2) ? 1 : -1) : 0.0), 0.0};
+  });
 }
 
 TEST(BoundarySimplification, StraightSidesLoseTheirMiddleVertices) {

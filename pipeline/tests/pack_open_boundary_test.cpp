@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "grid_sheet.h"
 #include "open_boundary_check.h"
 #include "prm/mesh_io.h"
 
@@ -21,19 +22,7 @@ using prm::test::Measured;
 using prm::test::pack_and_check;
 
 Mesh height_field(int n, double (*h)(double, double)) {
-  Mesh m;
-  for (int j = 0; j <= n; ++j)
-    for (int i = 0; i <= n; ++i) {
-      const double x = static_cast<double>(i) / n, y = static_cast<double>(j) / n;
-      m.positions.push_back({x, y, h(x, y)});
-    }
-  auto id = [n](int i, int j) { return static_cast<uint32_t>(j * (n + 1) + i); };
-  for (int j = 0; j < n; ++j)
-    for (int i = 0; i < n; ++i) {
-      m.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      m.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-    }
-  return m;
+  return prm::test::grid_sheet(n, [h](int, int, double x, double y) { return Vec3{x, y, h(x, y)}; });
 }
 
 // The faces of `closed` whose centroid lies below the plane z = the middle of its bounding box (unused vertices
