@@ -147,7 +147,9 @@ TEST(ReliefGrids, AllocationFollowsTheDetail) {
     EXPECT_GE(k, -3 - 1e-9);
     EXPECT_LE(k, 4 + 1e-9);
     for (size_t q = 0; q < scale.size(); ++q)
-      if (detail.curvature2[r] > detail.curvature2[q]) EXPECT_LE(scale[r], scale[q]) << r << " " << q;
+      if (detail.curvature2[r] > detail.curvature2[q]) {
+        EXPECT_LE(scale[r], scale[q]) << r << " " << q;
+      }
   }
 }
 
