@@ -26,14 +26,6 @@ QuantizedMesh two_pillows() {
   return m;
 }
 
-Frame unit_frame() {
-  Frame f;
-  f.bits = 12;
-  f.origin = {0, 0, 0};
-  f.step = 1;
-  return f;
-}
-
 Result<std::vector<uint8_t>> encode(const QuantizedMesh& m, int64_t grid, std::vector<int64_t> extra,
                                     EncodeReport* rep = nullptr, int depth = -1) {
   PrmOptions o;

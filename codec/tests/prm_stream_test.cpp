@@ -33,14 +33,6 @@ QMesh pillow(int r, int perturb, uint32_t seed = 1) {
   return lattice_pillow(r, 8, bumpy_top, bumpy_bottom, nullptr, moved);
 }
 
-Frame unit_frame() {
-  Frame f;
-  f.bits = 12;
-  f.origin = {0, 0, 0};
-  f.step = 1;
-  return f;
-}
-
 // decode(encode(m)) is m: the same quantized positions under the reported vertex order, the same triangles.
 void expect_round_trip(const QMesh& m, const std::vector<uint8_t>& stream, const EncodeReport& rep) {
   const auto dec = decode(stream.data(), stream.size());

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "prm/codec.h"
+
 namespace prm::codec::test {
 
 struct TestMesh {
@@ -37,6 +39,15 @@ struct QuantizedMesh {
 // lattice points facing +z on top (heights top(i, j)), the same hexagon facing -z below (heights bottom(i, j)) and a
 // band of side triangles between their rims. Every top and bottom triangle is regular (§7.1), the band is not.
 // Each (i, j) listed in `moved` has its top vertex moved one step along x, off the lattice.
+// The frame of lattice meshes coded as they are: 12 bits, origin 0, step 1 (a quantized value is the position).
+inline Frame unit_frame() {
+  Frame f;
+  f.bits = 12;
+  f.origin = {0, 0, 0};
+  f.step = 1;
+  return f;
+}
+
 QuantizedMesh lattice_pillow(int r, int64_t grid, int64_t (*top)(int, int, const void*),
                              int64_t (*bottom)(int, int, const void*), const void* user,
                              const std::vector<std::array<int, 2>>& moved);
