@@ -312,7 +312,8 @@ EffortPlan effort_plan(int effort) {
                                 ".." + std::to_string(kMaxEffort));
   EffortPlan p;
   switch (effort) {
-    case 0: p.steps = 1; p.search_samples_per_face = 2; p.lambda_rounds = 2; p.grid_tolerance = 0.15; p.accept_error = 0; break;
+    case 0: p.steps = 1; p.search_samples_per_face = 2; p.lambda_rounds = 2; p.grid_tolerance = 0.15; p.accept_error = 0;
+            p.general_skip_bytes_per_vertex = kGeneralSkipBytesPerVertex; break;
     case 1: p.steps = 1; p.search_samples_per_face = 2; p.lambda_rounds = 3; p.grid_tolerance = 0.1; p.accept_error = 0.85; break;
     case 2: p.steps = 1; p.search_samples_per_face = 4; p.lambda_rounds = 4; p.grid_tolerance = 0.06; p.accept_error = 0.9; break;
     case 3: p.steps = 1; p.search_samples_per_face = 4; p.lambda_rounds = 4; break;
@@ -570,14 +571,14 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
   std::unique_ptr<MetroReference> input_reference;
   if (mode != PackMode::prm) input_reference = std::make_unique<MetroReference>(&input, mo);  // borrowed
 
-  // The general candidate: the input as it comes (with its boundaries), cheap, made first. The general path codes
-  // a manifold: a pinched vertex (its faces in several fans, no edge with three faces) is split first, one copy per
-  // extra fan as the repair does, which leaves the geometry as it is (the report names the copies).
+  // The general path codes a manifold: a pinched vertex (its faces in several fans, no edge with three faces) is
+  // split first, one copy per extra fan as the repair does, which leaves the geometry as it is (the report names the
+  // copies).
   PackResult::Candidate general;
   GeneralPack general_pack;
   Mesh general_input;  // the pinch-split copy, when the input has pinches
   size_t general_pinches_split = 0;
-  if (mode != PackMode::prm) {
+  auto make_general = [&] {
     const auto t0 = std::chrono::steady_clock::now();
     const Mesh* coded = &input;
     if (input_check.non_manifold_vertices > 0 && input_check.non_manifold_edges == 0) {
@@ -602,7 +603,14 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
       general.refused = e.what();
     }
     general.seconds = seconds_since(t0);
-  }
+  };
+  // The general candidate: the input as it comes (with its boundaries), cheap, made first, unless the effort plan
+  // lets a small enough PRM stream stand without it (EffortPlan::general_skip_bytes_per_vertex): then it comes second,
+  // only where the PRM stream is not that small.
+  const double skip_rate = mode == PackMode::automatic && options.bits <= 0 && options.step_scale <= 0
+                               ? effort_plan(options.effort).general_skip_bytes_per_vertex
+                               : 0;
+  if (mode != PackMode::prm && skip_rate <= 0) make_general();
   auto general_result = [&](std::string reason) {
     PackResult out;
     out.stream = std::move(general_pack.stream);
@@ -631,20 +639,16 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
   PackResult::Candidate prm;
   PackResult out;
   const auto t0 = std::chrono::steady_clock::now();
+  bool prm_unreachable = false;  // the PRM's failure: TargetNotReached (otherwise InputError)
   try {
     out = pack_prm_open(input, options, input_reference.get());
     prm.made = true;
   } catch (const remesh::TargetNotReached& e) {
-    if (mode == PackMode::prm || !general.made) {
-      if (mode == PackMode::prm) throw;
-      throw remesh::TargetNotReached(std::string(e.what()) + "; the general path: " + general.refused);
-    }
+    if (mode == PackMode::prm) throw;
     prm.refused = e.what();
+    prm_unreachable = true;
   } catch (const InputError& e) {
-    if (mode == PackMode::prm || !general.made) {
-      if (mode == PackMode::prm) throw;
-      throw InputError(std::string(e.what()) + "; the general path: " + general.refused);
-    }
+    if (mode == PackMode::prm) throw;
     prm.refused = e.what();
   }
   prm.seconds = seconds_since(t0);
@@ -654,6 +658,21 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
     prm.bits = out.bits;
     prm.rms = out.remesh.error.rms;
     prm.max = out.remesh.error.max;
+  }
+  if (skip_rate > 0) {
+    const double bound = skip_rate * static_cast<double>(input.num_vertices());
+    if (prm.made && static_cast<double>(prm.bytes) < bound)
+      general.not_tried = "not tried at effort " + std::to_string(options.effort) + ": the piecewise regular stream (" +
+                          std::to_string(prm.bytes) + " B) is under " + std::to_string(skip_rate).substr(0, 4) +
+                          " B per input vertex (" + std::to_string(input.num_vertices()) +
+                          " vertices), half the smallest rate the general path has reached";
+    else
+      make_general();
+  }
+  if (!prm.made && !general.made) {
+    const std::string both = prm.refused + "; the general path: " + general.refused;
+    if (prm_unreachable) throw remesh::TargetNotReached(both);
+    throw InputError(both);
   }
   auto bytes_rms = [](const PackResult::Candidate& c) {
     return std::to_string(c.bytes) + " B at " + std::to_string(c.bits) + " bits, RMS " + std::to_string(c.rms);
@@ -687,6 +706,9 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
   else if (general.made)
     out.mode_reason = "auto: the piecewise regular stream (" + bytes_rms(prm) + ") is not larger than the general "
                       "one (" + bytes_rms(general) + ")";
+  else if (!general.not_tried.empty())
+    out.mode_reason = "auto: the piecewise regular stream (" + bytes_rms(prm) + "); the general one was " +
+                      general.not_tried;
   else
     out.mode_reason = "auto: the general path cannot code the input (" + general.refused + ")";
   out.prm_candidate = prm;

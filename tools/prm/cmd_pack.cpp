@@ -222,6 +222,8 @@ void add_pack_command(CLI::App& root) {
           j["max_rel"] = c.max;
         } else if (!c.refused.empty()) {
           j["refused"] = c.refused;
+        } else if (!c.not_tried.empty()) {
+          j["not_tried"] = c.not_tried;
         }
         return j;
       };
