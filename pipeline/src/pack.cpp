@@ -313,7 +313,7 @@ EffortPlan effort_plan(int effort) {
   EffortPlan p;
   switch (effort) {
     case 0: p.steps = 1; p.search_samples_per_face = 2; p.lambda_rounds = 2; p.grid_tolerance = 0.15; p.accept_error = 0;
-            p.general_skip_bytes_per_vertex = kGeneralSkipBytesPerVertex; break;
+            break;
     case 1: p.steps = 1; p.search_samples_per_face = 2; p.lambda_rounds = 3; p.grid_tolerance = 0.1; p.accept_error = 0.85; break;
     case 2: p.steps = 1; p.search_samples_per_face = 4; p.lambda_rounds = 4; p.grid_tolerance = 0.06; p.accept_error = 0.9; break;
     case 3: p.steps = 1; p.search_samples_per_face = 4; p.lambda_rounds = 4; break;
@@ -324,6 +324,9 @@ EffortPlan effort_plan(int effort) {
     case 8: p.exhaustive = true; p.search_samples_per_face = 4; break;
     default: p.exhaustive = true; break;
   }
+  // Below the exhaustive search the general candidate's bisection (up to five encodes and Metro runs, 1-2 s CPU on a
+  // 50k-vertex model) is made only when its fewest bits could beat the PRM stream.
+  p.general_floor_check = effort < kMaxEffort;
   if (effort < kMaxEffort) {
     // The grid predicted from the first grid's error (error ~ g^1.4 between grids of 10-20 quantization steps on
     // the paper's models), rounded to the nearest, and no measurement of the next coarser grid when it is predicted
@@ -578,14 +581,19 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
   GeneralPack general_pack;
   Mesh general_input;  // the pinch-split copy, when the input has pinches
   size_t general_pinches_split = 0;
+  auto general_coded = [&]() -> const Mesh& {
+    if (input_check.non_manifold_vertices > 0 && input_check.non_manifold_edges == 0) {
+      if (general_pinches_split == 0) {
+        general_input = input;
+        general_pinches_split = split_pinched_vertices(general_input);
+      }
+      return general_input;
+    }
+    return input;
+  };
   auto make_general = [&] {
     const auto t0 = std::chrono::steady_clock::now();
-    const Mesh* coded = &input;
-    if (input_check.non_manifold_vertices > 0 && input_check.non_manifold_edges == 0) {
-      general_input = input;
-      general_pinches_split = split_pinched_vertices(general_input);
-      coded = &general_input;
-    }
+    const Mesh* coded = &general_coded();
     try {
       general_pack = pack_general(*coded, *input_reference, target, options.bits, options.max_minor,
                                   kQuantizationMargin * options.max_error);
@@ -604,13 +612,12 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
     }
     general.seconds = seconds_since(t0);
   };
-  // The general candidate: the input as it comes (with its boundaries), cheap, made first, unless the effort plan
-  // lets a small enough PRM stream stand without it (EffortPlan::general_skip_bytes_per_vertex): then it comes second,
-  // only where the PRM stream is not that small.
-  const double skip_rate = mode == PackMode::automatic && options.bits <= 0 && options.step_scale <= 0
-                               ? effort_plan(options.effort).general_skip_bytes_per_vertex
-                               : 0;
-  if (mode != PackMode::prm && skip_rate <= 0) make_general();
+  // The general candidate: the input as it comes (with its boundaries), made first, unless the effort plan puts the
+  // PRM first (EffortPlan::general_floor_check): then the general one follows only where its fewest bits could beat
+  // the PRM stream.
+  const bool floor_check = mode == PackMode::automatic && options.bits <= 0 && options.step_scale <= 0 &&
+                           effort_plan(options.effort).general_floor_check;
+  if (mode != PackMode::prm && !floor_check) make_general();
   auto general_result = [&](std::string reason) {
     PackResult out;
     out.stream = std::move(general_pack.stream);
@@ -659,15 +666,29 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
     prm.rms = out.remesh.error.rms;
     prm.max = out.remesh.error.max;
   }
-  if (skip_rate > 0) {
-    const double bound = skip_rate * static_cast<double>(input.num_vertices());
-    if (prm.made && static_cast<double>(prm.bytes) < bound)
-      general.not_tried = "not tried at effort " + std::to_string(options.effort) + ": the piecewise regular stream (" +
-                          std::to_string(prm.bytes) + " B) is under " + std::to_string(skip_rate).substr(0, 4) +
-                          " B per input vertex (" + std::to_string(input.num_vertices()) +
-                          " vertices), half the smallest rate the general path has reached";
-    else
+  if (floor_check) {
+    const auto t1 = std::chrono::steady_clock::now();
+    size_t floor = 0;
+    bool refused = false;
+    if (prm.made) {
+      try {
+        floor = general_floor_bytes(general_coded(), options.max_minor);
+      } catch (const InputError& e) {
+        general.refused = e.what();
+        refused = true;
+      }
+    }
+    if (refused) {
+      general.seconds = seconds_since(t1);
+    } else if (prm.made && floor >= prm.bytes) {
+      general.not_tried = "not tried at effort " + std::to_string(options.effort) + ": at its fewest bits (" +
+                          std::to_string(kMinGeneralBits) + ") the general stream is " + std::to_string(floor) +
+                          " B, not smaller than the piecewise regular one";
+      general.seconds = seconds_since(t1);
+    } else {
       make_general();
+      general.seconds = seconds_since(t1);  // the floor's encode included
+    }
   }
   if (!prm.made && !general.made) {
     const std::string both = prm.refused + "; the general path: " + general.refused;

@@ -179,4 +179,13 @@ GeneralPack pack_general(const Mesh& input, const MetroReference& reference, dou
   return best;
 }
 
+size_t general_floor_bytes(const Mesh& input, int max_minor) {
+  codec::EncodeReport report;
+  const auto encoded = encode_general_mesh(input, kMinGeneralBits, &report, max_minor);
+  if (!encoded.ok())
+    throw InputError("the general path refuses the input: " + encoded.status.message + " (spec §" +
+                     encoded.status.spec_section + ")");
+  return encoded.value.size();
+}
+
 }  // namespace prm::pipeline

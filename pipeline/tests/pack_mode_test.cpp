@@ -14,6 +14,7 @@
 #include "prm/pipeline/pack.h"
 #include "prm/pipeline/pack_general.h"
 #include "awkward_meshes.h"
+#include "metro_test_meshes.h"
 
 namespace {
 
@@ -68,6 +69,59 @@ TEST(PackMode, CubeIsCodedAsItIs) {
   EXPECT_EQ(r.input_vertices, cube.positions.size());
   EXPECT_LT(5 * r.stream.size(), r.prm_candidate.bytes) << r.stream.size() << " B against " << r.prm_candidate.bytes;
   EXPECT_GT(r.prm_candidate.vertices, 100 * cube.positions.size());
+  EXPECT_LE(decoded_rms(cube, r), o.target_error);
+}
+
+// EffortPlan::general_floor_check (issue 21): below effort 9 the PRM candidate comes first, and a general stream
+// whose fewest bits are already no smaller is not tried (the report says so); at effort 9 both are made, and the
+// general stream kept is at least its floor (the premise: the stream grows with the bit depth).
+TEST(PackMode, GeneralCandidateUntriedWhenItsFloorIsNotSmaller) {
+  const prm::Mesh sphere = prm::test::icosphere(5);  // 10,242 vertices
+  const size_t floor = prm::pipeline::general_floor_bytes(sphere);
+  PackOptions o;
+  o.target_error = 1e-3;
+  for (int effort : {0, 3}) {
+    o.effort = effort;
+    const PackResult r = prm::pipeline::pack(sphere, o);
+    EXPECT_EQ(r.mode, PackMode::prm) << r.mode_reason;
+    ASSERT_TRUE(r.prm_candidate.made) << r.prm_candidate.refused;
+    EXPECT_LE(r.prm_candidate.bytes, floor);
+    EXPECT_FALSE(r.general_candidate.made);
+    EXPECT_TRUE(r.general_candidate.refused.empty());
+    EXPECT_NE(r.general_candidate.not_tried.find("not tried at effort " + std::to_string(effort)), std::string::npos)
+        << r.general_candidate.not_tried;
+    EXPECT_NE(r.mode_reason.find("not tried"), std::string::npos) << r.mode_reason;
+    EXPECT_LE(decoded_rms(sphere, r), o.target_error);
+  }
+  // The premise: more bits, a larger general stream.
+  size_t previous = floor;
+  for (int bits = prm::pipeline::kMinGeneralBits + 1; bits <= 14; ++bits) {
+    prm::codec::EncodeReport report;
+    const auto encoded = prm::pipeline::encode_general_mesh(sphere, bits, &report);
+    ASSERT_TRUE(encoded.ok()) << encoded.status.message;
+    EXPECT_GT(encoded.value.size(), previous) << bits << " bits";
+    previous = encoded.value.size();
+  }
+  // A given bit depth: both candidates made, as before.
+  o.bits = 10;
+  const PackResult both = prm::pipeline::pack(sphere, o);
+  EXPECT_TRUE(both.general_candidate.not_tried.empty());
+  ASSERT_TRUE(both.general_candidate.made) << both.general_candidate.refused;
+  EXPECT_GE(both.general_candidate.bytes, floor);
+}
+
+// At effort 0 a general stream whose floor is smaller than the PRM one (the cube's 8 vertices) is made, after the
+// PRM candidate, and auto keeps the smaller.
+TEST(PackMode, EffortZeroMakesTheGeneralCandidateWhenItsFloorIsSmaller) {
+  const prm::Mesh cube = prm::test::box(1, 1, 1, 1);
+  PackOptions o;
+  o.target_error = 1e-3;
+  o.effort = 0;
+  const PackResult r = prm::pipeline::pack(cube, o);
+  EXPECT_EQ(r.mode, PackMode::general) << r.mode_reason;
+  expect_consistent_choice(r);
+  EXPECT_TRUE(r.general_candidate.not_tried.empty());
+  EXPECT_EQ(r.report.vertices, cube.positions.size());
   EXPECT_LE(decoded_rms(cube, r), o.target_error);
 }
 

@@ -116,15 +116,11 @@ struct EffortPlan {
   double next_exponent = 0;       // remesh::RemeshOptions::next_exponent
   double aim = 0.97;              // remesh::RemeshOptions::aim
   bool round_to_nearest = false;  // remesh::RemeshOptions::round_to_nearest
-  // PackMode::automatic: the piecewise regular candidate is made first, and the general one is not tried when the
-  // PRM stream is under this many bytes per input vertex (0: the general candidate is always made, first).
-  double general_skip_bytes_per_vertex = 0;
+  // PackMode::automatic: the piecewise regular candidate is made first, and the general one only when its stream at
+  // its fewest bits (general_floor_bytes, one encode) is smaller than the PRM stream; otherwise it is not tried (the
+  // report says so). false: the general candidate is always made, first.
+  bool general_floor_check = false;
 };
-// The estimate behind EffortPlan::general_skip_bytes_per_vertex: the general path (format 1.0/1.3, connectivity and
-// predicted positions at 8..20 bits) has coded no mesh measured in bench/README.md ("pack --mode") in under 0.89
-// bytes per vertex (bunny_zipper at 2e-4; 0.92 mech-holes-shark, 1.0-2.2 the others); a PRM stream under half of
-// that per input vertex is taken to be the smaller without making the general one (the report says it was not tried).
-constexpr double kGeneralSkipBytesPerVertex = 0.45;
 EffortPlan effort_plan(int effort);  // throws std::invalid_argument outside kMinEffort..kMaxEffort
 constexpr double kHeightTolerance = 1.5;
 // The step scales the search tries at the best bit depth: eighths of an octave towards the next coarser depth. The
@@ -175,7 +171,7 @@ struct PackResult {
     int bits = 0;
     double rms = 0, max = 0;  // decoded mesh to what it codes (the repaired input for prm, the input for general)
     double seconds = 0;       // wall-clock seconds to make it
-    std::string not_tried;    // why it was not tried (EffortPlan::general_skip_bytes_per_vertex); empty otherwise
+    std::string not_tried;    // why it was not tried (EffortPlan::general_floor_check); empty otherwise
   };
   Candidate prm_candidate, general_candidate;
   double seconds_general = 0;   // the general candidate (the whole job: repair + remesh + encode + general)

@@ -53,4 +53,11 @@ struct GeneralPack {
 GeneralPack pack_general(const Mesh& input, const MetroReference& reference, double target, int bits,
                          int max_minor = codec::kFormatMinorPatchGrids, double max_target = 0);
 
+// The general stream's size at its fewest bits (kMinGeneralBits): one encode, no decode and no Metro. The stream
+// grows with the bit depth (every residual carries one more bit per coordinate), so whatever depth pack_general would
+// choose, its stream is at least about this large: pack() leaves the general candidate untried when a piecewise
+// regular stream is already no larger (EffortPlan::general_floor_check, issue 21). Throws prm::InputError, as
+// pack_general does, when the general path refuses the mesh.
+size_t general_floor_bytes(const Mesh& input, int max_minor = codec::kFormatMinorPatchGrids);
+
 }  // namespace prm::pipeline
