@@ -75,7 +75,9 @@ void add_pack_command(CLI::App& root) {
                   "path (format 1.0, or 1.3 with the seam context, as `prm encode`) at the smallest bit depth (8..20) "
                   "that meets --target-error and --max-error (exit 2 if it refuses the input: non-manifold; 3 if no bit depth meets the "
                   "target without collapsing a triangle); auto "
-                  "(default): make both and keep the smaller stream (prm when the general path refuses the input, "
+                  "(default): make both and keep the smaller stream (below --effort 9 the general one only when its stream "
+                  "at 8 bits is smaller than the piecewise regular one, otherwise it cannot win and is not tried; prm "
+                  "when the general path refuses the input, "
                   "general when no piecewise regular mesh meets the target; prm without --target-error or --max-error, and "
                   "with --fill-holes on an open input, whose holes the general path would keep). The report "
                   "says which and why")
