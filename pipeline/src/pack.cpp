@@ -312,8 +312,7 @@ EffortPlan effort_plan(int effort) {
                                 ".." + std::to_string(kMaxEffort));
   EffortPlan p;
   switch (effort) {
-    case 0: p.steps = 1; p.search_samples_per_face = 2; p.lambda_rounds = 2; p.grid_tolerance = 0.15; p.accept_error = 0;
-            break;
+    case 0: p.steps = 1; p.search_samples_per_face = 2; p.lambda_rounds = 2; p.grid_tolerance = 0.15; p.accept_error = 0; break;
     case 1: p.steps = 1; p.search_samples_per_face = 2; p.lambda_rounds = 3; p.grid_tolerance = 0.1; p.accept_error = 0.85; break;
     case 2: p.steps = 1; p.search_samples_per_face = 4; p.lambda_rounds = 4; p.grid_tolerance = 0.06; p.accept_error = 0.9; break;
     case 3: p.steps = 1; p.search_samples_per_face = 4; p.lambda_rounds = 4; break;
