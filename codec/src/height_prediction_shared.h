@@ -424,7 +424,7 @@ bool code_lp_heights(const Level& level, LpRaster& raster, const LpTable& table,
   coded.assign(n, 0);
   int64_t previous = lo + (hi - lo) / 2;
   // One height in raster order, seen through `view` with tap mask `mask`.
-  auto code_one = [&](uint32_t l, uint32_t mask, const auto& view) PRM_WASM_INLINE_LAMBDA {
+  auto code_one = [&](uint32_t l, uint32_t mask, const LpCellView& view) {
     if (placed[l]) {
       previous = h[l];
       return true;
@@ -452,24 +452,37 @@ bool code_lp_heights(const Level& level, LpRaster& raster, const LpTable& table,
     previous = v;
     return true;
   };
-  if (!raster.dense()) {
-    std::array<uint32_t, kLpOffsets> id;
-    for (uint32_t l : raster.order()) {
-      const uint32_t mask = raster.taps(level.coord[l][0], level.coord[l][1], id);
-      if (!code_one(l, mask, LpIdView{id, h, &res, &coded})) return false;
-    }
-    return true;
-  }
   // Dense: the heights and activities live in the grid's cells, written as each cell's first vertex is known.
+  // Sparse (rare: long, thin patches): the 14 taps' heights and activities gathered through the local ids into a
+  // cell view of their own (offset t at index t). One call of code_one serves both (one copy of it in the module).
+  const bool dense = raster.dense();
   std::vector<int64_t>& ch = raster.cell_height;
   std::vector<int64_t>& ca = raster.cell_activity;
-  ch.assign(raster.cells(), kLpEmptyCell);
-  ca.assign(raster.cells(), -1);
+  if (dense) {
+    ch.assign(raster.cells(), kLpEmptyCell);
+    ca.assign(raster.cells(), -1);
+  }
+  std::array<uint32_t, kLpOffsets> id;
+  std::array<int64_t, kLpOffsets> tap_height, tap_activity;
+  static constexpr std::array<int64_t, kLpOffsets> kIdentity = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13};
   for (uint32_t l : raster.order()) {
-    const size_t b = static_cast<size_t>(raster.cell(level.coord[l][0], level.coord[l][1]));
-    const LpCellView view{ch.data() + b, ca.data() + b, raster.deltas()};
-    if (!code_one(l, view.mask(), view)) return false;
-    if (raster.owner(static_cast<int64_t>(b)) == l) {
+    size_t b = 0;
+    uint32_t mask;
+    LpCellView view{tap_height.data(), tap_activity.data(), kIdentity.data()};
+    if (dense) {
+      b = static_cast<size_t>(raster.cell(level.coord[l][0], level.coord[l][1]));
+      view = LpCellView{ch.data() + b, ca.data() + b, raster.deltas()};
+      mask = view.mask();
+    } else {
+      mask = raster.taps(level.coord[l][0], level.coord[l][1], id);
+      const LpIdView ids{id, h, &res, &coded};
+      for (int t = 0; t < kLpOffsets; ++t) {
+        tap_height[static_cast<size_t>(t)] = ids.present(t) ? ids.height(t) : kLpEmptyCell;
+        tap_activity[static_cast<size_t>(t)] = ids.activity(t);
+      }
+    }
+    if (!code_one(l, mask, view)) return false;
+    if (dense && raster.owner(static_cast<int64_t>(b)) == l) {
       ch[b] = h[l];
       ca[b] = coded[l] ? (res[l] < 0 ? -res[l] : res[l]) : -1;
     }
