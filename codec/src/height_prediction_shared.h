@@ -128,6 +128,25 @@ struct LpTable {
   }
 };
 
+// The tap mask of a 14-bit occupancy key (LpRaster::mask_at): key bits 0-2 are the cells i - 3 .. i - 1 of row j,
+// 3-7 the cells i - 2 .. i + 2 of row j - 1, 8-11 the cells i - 1 .. i + 2 of row j - 2, 12-13 the cells i + 1, i + 2
+// of row j - 3; each is one of the 14 offsets of kLpOffset (bit t of the mask).
+inline const std::array<uint16_t, 1u << kLpOffsets>& lp_mask_of_key() {
+  static const std::array<uint16_t, 1u << kLpOffsets> table = [] {
+    constexpr int kRowBase[4] = {0, 3, 8, 12}, kRowFirst[4] = {-3, -2, -1, 1};  // key bit and di of each row's first
+    std::array<int, kLpOffsets> bit{};
+    for (int t = 0; t < kLpOffsets; ++t) {
+      const int row = -kLpOffset[t][1];
+      bit[t] = kRowBase[row] + kLpOffset[t][0] - kRowFirst[row];
+    }
+    std::array<uint16_t, 1u << kLpOffsets> m{};
+    for (uint32_t key = 0; key < m.size(); ++key)
+      for (int t = 0; t < kLpOffsets; ++t) m[key] |= static_cast<uint16_t>((key >> bit[t] & 1u) << t);
+    return m;
+  }();
+  return table;
+}
+
 // §9.7.4 A dense raster cell without a vertex (code_lp_heights' per-cell heights; no height is negative).
 constexpr int64_t kLpEmptyCell = INT64_MIN;
 
@@ -180,6 +199,13 @@ class LpRaster {
         while (e < extra_.size() && extra_[e].first == static_cast<int64_t>(b)) order_.push_back(extra_[e++].second);
       }
       for (int t = 0; t < kLpOffsets; ++t) delta_[t] = kLpOffset[t][1] * width_ + kLpOffset[t][0];
+      // One bit per cell, a row of width bits per lattice row, one byte of padding (mask_at reads two bytes).
+      row_bytes_ = (width + 7) / 8 + 1;
+      occupied_.assign(static_cast<size_t>(row_bytes_ * height), 0);
+      for (uint32_t l = 0; l < n; ++l) {
+        const int64_t x = level.coord[l][0] - i0_, y = level.coord[l][1] - j0_;
+        occupied_[static_cast<size_t>(y * row_bytes_ + (x >> 3))] |= static_cast<uint8_t>(1u << (x & 7));
+      }
       return shared;
     }
     // Sparse: (j, i) as one key (j - jmin) * (imax - imin + 1) + (i - imin), which orders like (j, i); the pairs
@@ -205,6 +231,18 @@ class LpRaster {
   int64_t cell(int64_t i, int64_t j) const { return index(i, j); }
   uint32_t owner(int64_t cell) const { return grid_[static_cast<size_t>(cell)]; }
   const int64_t* deltas() const { return delta_.data(); }
+  // The tap mask of (i, j) on the dense grid (as taps() gives it), from the occupancy bits: the cells (i - 3 .. i + 2)
+  // of rows j .. j - 3 are six bits of each row, of which the 14 offsets are a 14-bit key (kLpKeyOffset).
+  uint32_t mask_at(int64_t i, int64_t j) const {
+    const int64_t x = i - i0_ - 3, y = j - j0_;  // x >= 0 and y >= 3: the margin
+    auto window = [&](int64_t row) {
+      const uint8_t* p = occupied_.data() + row * row_bytes_ + (x >> 3);
+      return static_cast<uint32_t>(p[0] | p[1] << 8) >> (x & 7);
+    };
+    const uint32_t key = (window(y) & 7) | (window(y - 1) >> 1 & 31) << 3 | (window(y - 2) >> 2 & 15) << 8 |
+                         (window(y - 3) >> 4 & 3) << 12;
+    return lp_mask_of_key()[key];
+  }
   size_t cells() const { return grid_.size(); }
   std::vector<int64_t> cell_height, cell_activity;
 
@@ -240,6 +278,8 @@ class LpRaster {
   int64_t i0_ = 0, j0_ = 0, width_ = 0, i1_ = 0, j1_ = 0;  // sparse: the footprint [i0, i1] x [j0, j1]
   std::array<int64_t, kLpOffsets> delta_{};
   std::vector<uint32_t> grid_;
+  std::vector<uint8_t> occupied_;  // dense: one bit per cell, rows of row_bytes_
+  int64_t row_bytes_ = 0;
   std::vector<std::pair<int64_t, uint32_t>> extra_;  // (cell, id) of the vertices after a cell's first
   std::vector<std::pair<int64_t, uint32_t>> sorted_;  // sparse: (key, id), sorted
   std::vector<uint32_t> order_;
@@ -300,11 +340,6 @@ struct LpCellView {
   bool present(int t) const { return cell_height[delta[t]] != kLpEmptyCell; }
   int64_t height(int t) const { return cell_height[delta[t]]; }
   int64_t activity(int t) const { return cell_activity[delta[t]]; }
-  uint32_t mask() const {
-    uint32_t m = 0;
-    for (int t = 0; t < kLpOffsets; ++t) m |= (present(t) ? 1u : 0u) << t;
-    return m;
-  }
 };
 
 // §9.7.4 The prediction of one height from its taps (set s), before clamping.
@@ -472,7 +507,7 @@ bool code_lp_heights(const Level& level, LpRaster& raster, const LpTable& table,
     if (dense) {
       b = static_cast<size_t>(raster.cell(level.coord[l][0], level.coord[l][1]));
       view = LpCellView{ch.data() + b, ca.data() + b, raster.deltas()};
-      mask = view.mask();
+      mask = raster.mask_at(level.coord[l][0], level.coord[l][1]);
     } else {
       mask = raster.taps(level.coord[l][0], level.coord[l][1], id);
       const LpIdView ids{id, h, &res, &coded};
