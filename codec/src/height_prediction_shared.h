@@ -147,6 +147,15 @@ inline const std::array<uint16_t, 1u << kLpOffsets>& lp_mask_of_key() {
   return table;
 }
 
+// Whether the dense raster keeps occupancy bits for its tap masks (LpRaster::mask_at). Not in the WebAssembly build:
+// there the table and the bits cost 318 B of the gzipped module (web/build.sh) for no measurable speed
+// (web/bench/cpu_ab.mjs: horse 0.998x), and the masks come from the cells' heights (LpCellView::mask).
+#if defined(__wasm__)
+constexpr bool kLpOccupancyMasks = false;
+#else
+constexpr bool kLpOccupancyMasks = true;
+#endif
+
 // §9.7.4 A dense raster cell without a vertex (code_lp_heights' per-cell heights; no height is negative).
 constexpr int64_t kLpEmptyCell = INT64_MIN;
 
@@ -201,8 +210,8 @@ class LpRaster {
       for (int t = 0; t < kLpOffsets; ++t) delta_[t] = kLpOffset[t][1] * width_ + kLpOffset[t][0];
       // One bit per cell, a row of width bits per lattice row, one byte of padding (mask_at reads two bytes).
       row_bytes_ = (width + 7) / 8 + 1;
-      occupied_.assign(static_cast<size_t>(row_bytes_ * height), 0);
-      for (uint32_t l = 0; l < n; ++l) {
+      if (kLpOccupancyMasks) occupied_.assign(static_cast<size_t>(row_bytes_ * height), 0);
+      for (uint32_t l = 0; kLpOccupancyMasks && l < n; ++l) {
         const int64_t x = level.coord[l][0] - i0_, y = level.coord[l][1] - j0_;
         occupied_[static_cast<size_t>(y * row_bytes_ + (x >> 3))] |= static_cast<uint8_t>(1u << (x & 7));
       }
@@ -231,8 +240,9 @@ class LpRaster {
   int64_t cell(int64_t i, int64_t j) const { return index(i, j); }
   uint32_t owner(int64_t cell) const { return grid_[static_cast<size_t>(cell)]; }
   const int64_t* deltas() const { return delta_.data(); }
-  // The tap mask of (i, j) on the dense grid (as taps() gives it), from the occupancy bits: the cells (i - 3 .. i + 2)
-  // of rows j .. j - 3 are six bits of each row, of which the 14 offsets are a 14-bit key (kLpKeyOffset).
+  // With kLpOccupancyMasks: the tap mask of (i, j) on the dense grid (as taps() gives it), from the occupancy bits:
+  // the cells i - 3 .. i + 2 of rows j .. j - 3 are six bits of each row, of which the 14 offsets make a 14-bit key
+  // (lp_mask_of_key).
   uint32_t mask_at(int64_t i, int64_t j) const {
     const int64_t x = i - i0_ - 3, y = j - j0_;  // x >= 0 and y >= 3: the margin
     auto window = [&](int64_t row) {
@@ -340,6 +350,11 @@ struct LpCellView {
   bool present(int t) const { return cell_height[delta[t]] != kLpEmptyCell; }
   int64_t height(int t) const { return cell_height[delta[t]]; }
   int64_t activity(int t) const { return cell_activity[delta[t]]; }
+  uint32_t mask() const {  // the tap mask, from the heights (without kLpOccupancyMasks)
+    uint32_t m = 0;
+    for (int t = 0; t < kLpOffsets; ++t) m |= (present(t) ? 1u : 0u) << t;
+    return m;
+  }
 };
 
 // §9.7.4 The prediction of one height from its taps (set s), before clamping.
@@ -507,7 +522,7 @@ bool code_lp_heights(const Level& level, LpRaster& raster, const LpTable& table,
     if (dense) {
       b = static_cast<size_t>(raster.cell(level.coord[l][0], level.coord[l][1]));
       view = LpCellView{ch.data() + b, ca.data() + b, raster.deltas()};
-      mask = raster.mask_at(level.coord[l][0], level.coord[l][1]);
+      mask = kLpOccupancyMasks ? raster.mask_at(level.coord[l][0], level.coord[l][1]) : view.mask();
     } else {
       mask = raster.taps(level.coord[l][0], level.coord[l][1], id);
       const LpIdView ids{id, h, &res, &coded};
