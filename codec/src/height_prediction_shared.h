@@ -128,6 +128,37 @@ struct LpTable {
   }
 };
 
+// The tap mask of a 14-bit occupancy key (LpRaster::mask_at): key bits 0-2 are the cells i - 3 .. i - 1 of row j,
+// 3-7 the cells i - 2 .. i + 2 of row j - 1, 8-11 the cells i - 1 .. i + 2 of row j - 2, 12-13 the cells i + 1, i + 2
+// of row j - 3; each is one of the 14 offsets of kLpOffset (bit t of the mask).
+inline const std::array<uint16_t, 1u << kLpOffsets>& lp_mask_of_key() {
+  static const std::array<uint16_t, 1u << kLpOffsets> table = [] {
+    constexpr int kRowBase[4] = {0, 3, 8, 12}, kRowFirst[4] = {-3, -2, -1, 1};  // key bit and di of each row's first
+    std::array<int, kLpOffsets> bit{};
+    for (int t = 0; t < kLpOffsets; ++t) {
+      const int row = -kLpOffset[t][1];
+      bit[t] = kRowBase[row] + kLpOffset[t][0] - kRowFirst[row];
+    }
+    std::array<uint16_t, 1u << kLpOffsets> m{};
+    for (uint32_t key = 0; key < m.size(); ++key)
+      for (int t = 0; t < kLpOffsets; ++t) m[key] |= static_cast<uint16_t>((key >> bit[t] & 1u) << t);
+    return m;
+  }();
+  return table;
+}
+
+// Whether the dense raster keeps occupancy bits for its tap masks (LpRaster::mask_at). Not in the WebAssembly build:
+// there the table and the bits cost 318 B of the gzipped module (web/build.sh) for no measurable speed
+// (web/bench/cpu_ab.mjs: horse 0.998x), and the masks come from the cells' heights (LpCellView::mask).
+#if defined(__wasm__)
+constexpr bool kLpOccupancyMasks = false;
+#else
+constexpr bool kLpOccupancyMasks = true;
+#endif
+
+// §9.7.4 A dense raster cell without a vertex (code_lp_heights' per-cell heights; no height is negative).
+constexpr int64_t kLpEmptyCell = INT64_MIN;
+
 // §9.7.3 A patch's raster order and its lattice lookup. The order is by increasing (j, i, local id); the vertex at
 // a lattice point is the one of lowest local id there. build() returns how many vertices share their lattice point
 // with a lower local id (a self-overlapping patch has some). Small footprints use a dense grid with a margin for
@@ -177,6 +208,13 @@ class LpRaster {
         while (e < extra_.size() && extra_[e].first == static_cast<int64_t>(b)) order_.push_back(extra_[e++].second);
       }
       for (int t = 0; t < kLpOffsets; ++t) delta_[t] = kLpOffset[t][1] * width_ + kLpOffset[t][0];
+      // One bit per cell, a row of width bits per lattice row, one byte of padding (mask_at reads two bytes).
+      row_bytes_ = (width + 7) / 8 + 1;
+      if (kLpOccupancyMasks) occupied_.assign(static_cast<size_t>(row_bytes_ * height), 0);
+      for (uint32_t l = 0; kLpOccupancyMasks && l < n; ++l) {
+        const int64_t x = level.coord[l][0] - i0_, y = level.coord[l][1] - j0_;
+        occupied_[static_cast<size_t>(y * row_bytes_ + (x >> 3))] |= static_cast<uint8_t>(1u << (x & 7));
+      }
       return shared;
     }
     // Sparse: (j, i) as one key (j - jmin) * (imax - imin + 1) + (i - imin), which orders like (j, i); the pairs
@@ -195,6 +233,28 @@ class LpRaster {
     return shared;
   }
   const std::vector<uint32_t>& order() const { return order_; }
+
+  // The dense grid (dense() only): the cell of (i, j), its lowest local id (kNone if empty), the cell offsets of
+  // the 14 tap offsets, and per-cell scratch for code_lp_heights (the height and |residual| of each cell's vertex).
+  bool dense() const { return dense_; }
+  int64_t cell(int64_t i, int64_t j) const { return index(i, j); }
+  uint32_t owner(int64_t cell) const { return grid_[static_cast<size_t>(cell)]; }
+  const int64_t* deltas() const { return delta_.data(); }
+  // With kLpOccupancyMasks: the tap mask of (i, j) on the dense grid (as taps() gives it), from the occupancy bits:
+  // the cells i - 3 .. i + 2 of rows j .. j - 3 are six bits of each row, of which the 14 offsets make a 14-bit key
+  // (lp_mask_of_key).
+  uint32_t mask_at(int64_t i, int64_t j) const {
+    const int64_t x = i - i0_ - 3, y = j - j0_;  // x >= 0 and y >= 3: the margin
+    auto window = [&](int64_t row) {
+      const uint8_t* p = occupied_.data() + row * row_bytes_ + (x >> 3);
+      return static_cast<uint32_t>(p[0] | p[1] << 8) >> (x & 7);
+    };
+    const uint32_t key = (window(y) & 7) | (window(y - 1) >> 1 & 31) << 3 | (window(y - 2) >> 2 & 15) << 8 |
+                         (window(y - 3) >> 4 & 3) << 12;
+    return lp_mask_of_key()[key];
+  }
+  size_t cells() const { return grid_.size(); }
+  std::vector<int64_t> cell_height, cell_activity;
 
   // The local ids at the 14 offsets around (i, j) (kNone where there is no vertex) and their mask.
   PRM_WASM_INLINE uint32_t taps(int64_t i, int64_t j, std::array<uint32_t, kLpOffsets>& id) const {
@@ -228,6 +288,8 @@ class LpRaster {
   int64_t i0_ = 0, j0_ = 0, width_ = 0, i1_ = 0, j1_ = 0;  // sparse: the footprint [i0, i1] x [j0, j1]
   std::array<int64_t, kLpOffsets> delta_{};
   std::vector<uint32_t> grid_;
+  std::vector<uint8_t> occupied_;  // dense: one bit per cell, rows of row_bytes_
+  int64_t row_bytes_ = 0;
   std::vector<std::pair<int64_t, uint32_t>> extra_;  // (cell, id) of the vertices after a cell's first
   std::vector<std::pair<int64_t, uint32_t>> sorted_;  // sparse: (key, id), sorted
   std::vector<uint32_t> order_;
@@ -262,12 +324,49 @@ bool code_lp_table(LpTable& table, std::array<bool, kLpSets>& fitted, LpModels& 
 // floor(a / 2^k) for any sign.
 inline int64_t floor_shift(int64_t a, int k) { return a >= 0 ? a >> k : -((-a + (int64_t{1} << k) - 1) >> k); }
 
+// §9.7.4 What a height sees at its 14 tap offsets, two ways with one interface: present(t), height(t) (a present
+// tap's height) and activity(t) (|residual| of a tap coded in this patch, -1 if absent, placed by an earlier patch
+// or not coded). LpIdView goes through the local ids of LpRaster::taps; LpCellView reads the dense grid's per-cell
+// heights and activities directly (a cell holds its lowest local id's values, kLpEmptyCell if it has none: every
+// tap cell precedes the current one in raster order, so its vertex is already known when it has one).
+struct LpIdView {
+  const std::array<uint32_t, kLpOffsets>& id;
+  const std::vector<int64_t>& h;
+  const std::vector<int64_t>* res;
+  const std::vector<uint8_t>* coded;
+  bool present(int t) const { return id[static_cast<size_t>(t)] != UINT32_MAX; }
+  int64_t height(int t) const { return h[id[static_cast<size_t>(t)]]; }
+  int64_t activity(int t) const {
+    const uint32_t x = id[static_cast<size_t>(t)];
+    if (x == UINT32_MAX || !(*coded)[x]) return -1;
+    const int64_t r = (*res)[x];
+    return r < 0 ? -r : r;
+  }
+};
+struct LpCellView {
+  const int64_t* cell_height;    // at the current cell
+  const int64_t* cell_activity;  // at the current cell
+  const int64_t* delta;
+  bool present(int t) const { return cell_height[delta[t]] != kLpEmptyCell; }
+  int64_t height(int t) const { return cell_height[delta[t]]; }
+  int64_t activity(int t) const { return cell_activity[delta[t]]; }
+  uint32_t mask() const {  // the tap mask, from the heights (without kLpOccupancyMasks)
+    uint32_t m = 0;
+    for (int t = 0; t < kLpOffsets; ++t) m |= (present(t) ? 1u : 0u) << t;
+    return m;
+  }
+};
+
 // §9.7.4 The prediction of one height from its taps (set s), before clamping.
+template <typename View>
+inline int64_t lp_predict(const LpTable& table, int s, const View& view) {
+  int64_t sum = 0;
+  for (int k = 0; k < table.taps[s]; ++k) sum += int64_t{table.weight[s][k]} * view.height(table.tap[s][k]);
+  return floor_shift(sum + kLpOne / 2, kLpPrecisionBits);
+}
 inline int64_t lp_predict(const LpTable& table, int s, const std::array<uint32_t, kLpOffsets>& id,
                           const std::vector<int64_t>& h) {
-  int64_t sum = 0;
-  for (int k = 0; k < table.taps[s]; ++k) sum += int64_t{table.weight[s][k]} * h[id[table.tap[s][k]]];
-  return floor_shift(sum + kLpOne / 2, kLpPrecisionBits);
+  return lp_predict(table, s, LpIdView{id, h, nullptr, nullptr});
 }
 
 // §9.7.4 What the heights of a patch see of the rest of the mesh: for a vertex without a tap set, its mesh
@@ -318,29 +417,39 @@ inline bool lp_neighbour_mean(const LpNeighbours& nb, uint32_t l, const std::vec
 }
 
 // §9.7.4 The activity context of a height: from the residuals already coded at the activity offsets (8: none).
-inline int lp_activity(const std::array<uint32_t, kLpOffsets>& id, const std::vector<int64_t>& res,
-                       const std::vector<uint8_t>& coded) {
+template <typename View>
+inline int lp_activity(const View& view) {
   int64_t sum = 0, count = 0;
-  for (int t : kLpActivityTap)
-    if (id[t] != LpRaster::kNone && coded[id[t]]) {
-      const int64_t r = res[id[t]];
-      sum += r < 0 ? -r : r;
+  for (int t : kLpActivityTap) {
+    const int64_t a = view.activity(t);
+    if (a >= 0) {
+      sum += a;
       ++count;
     }
+  }
   if (count == 0) return 8;
   // 3 * sum / count, count 1..6: divisions by constants (multiplications) instead of a 64-bit division per height.
   const uint64_t s3 = static_cast<uint64_t>(3 * sum);
   const uint64_t x = count == 1 ? s3 : count == 2 ? s3 / 2 : count == 3 ? s3 / 3 : count == 4 ? s3 / 4 : count == 5 ? s3 / 5 : s3 / 6;
   return x == 0 ? 0 : std::min(int_class(x) + 1, 7);  // the bit length of x, at most 7
 }
+inline int lp_activity(const std::array<uint32_t, kLpOffsets>& id, const std::vector<int64_t>& res,
+                       const std::vector<uint8_t>& coded) {
+  static const std::vector<int64_t> none;
+  return lp_activity(LpIdView{id, none, &res, &coded});
+}
 
 // §9.7.4 The sign context of a height predicted `pred` (Flags bit 3): with P = h(-1, 0) + h(1, -1) - h(0, -1), the
 // plane through those three neighbours, and d = P - pred: 0 if d <= -2, 1 if d = -1, 2 if d = 0, 3 if d = 1, 4 if
 // d >= 2; kLpNoSignContext if one of the three is missing.
-inline int lp_sign_context(const std::array<uint32_t, kLpOffsets>& id, const std::vector<int64_t>& h, int64_t pred) {
-  if (id[0] == LpRaster::kNone || id[1] == LpRaster::kNone || id[2] == LpRaster::kNone) return kLpNoSignContext;
-  const int64_t d = h[id[2]] + h[id[1]] - h[id[0]] - pred;
+template <typename View>
+inline int lp_sign_context(const View& view, int64_t pred) {
+  if (!view.present(0) || !view.present(1) || !view.present(2)) return kLpNoSignContext;
+  const int64_t d = view.height(2) + view.height(1) - view.height(0) - pred;
   return d <= -2 ? 0 : d >= 2 ? 4 : static_cast<int>(d + 2);
+}
+inline int lp_sign_context(const std::array<uint32_t, kLpOffsets>& id, const std::vector<int64_t>& h, int64_t pred) {
+  return lp_sign_context(LpIdView{id, h, nullptr, nullptr}, pred);
 }
 
 // The encoder's choice of the height it codes: the given one (lossless).
@@ -356,35 +465,34 @@ struct LpKeepHeight {
 // (encoder only): the height the encoder codes for l once its prediction and residual models are known (lossless:
 // h[l]).
 template <typename Value, typename Choose = LpKeepHeight>
-bool code_lp_heights(const Level& level, const LpRaster& raster, const LpTable& table, LpModels& m, int bits,
+bool code_lp_heights(const Level& level, LpRaster& raster, const LpTable& table, LpModels& m, int bits,
                      int64_t lo, int64_t hi, const std::vector<uint8_t>& placed, std::vector<int64_t>& h,
                      std::vector<int64_t>& res, std::vector<uint8_t>& coded, Value& value,
                      const LpNeighbours* nb = nullptr, const Choose& choose = Choose{}) {
   const uint32_t n = level.size();
   res.assign(n, 0);
   coded.assign(n, 0);
-  std::array<uint32_t, kLpOffsets> id;
   int64_t previous = lo + (hi - lo) / 2;
-  for (uint32_t l : raster.order()) {
-    const uint32_t mask = raster.taps(level.coord[l][0], level.coord[l][1], id);
+  // One height in raster order, seen through `view` with tap mask `mask`.
+  auto code_one = [&](uint32_t l, uint32_t mask, const LpCellView& view) {
     if (placed[l]) {
       previous = h[l];
-      continue;
+      return true;
     }
     const int s = table.first_set[mask];
     int64_t pred = previous;
     if (s != kLpNoSet) {
-      pred = lp_predict(table, s, id, h);
+      pred = lp_predict(table, s, view);
     } else if (nb) {
       int64_t mean;
       if (lp_neighbour_mean(*nb, l, h, coded, mean)) pred = mean;
     }
     pred = pred < lo ? lo : pred > hi ? hi : pred;
-    const int activity = lp_activity(id, res, coded);
+    const int activity = lp_activity(view);
     const int group = s == kLpNoSet ? kLpGroups - 1 : lp_group(table.taps[s]);
     int64_t r;
     SignedIntModel& model = m.residual[group][activity];
-    BitModel& sign = m.sign_context ? m.sign[group][lp_sign_context(id, h, pred)] : model.sign;
+    BitModel& sign = m.sign_context ? m.sign[group][lp_sign_context(view, pred)] : model.sign;
     if (!value(model, bits, choose(l, pred, h[l], model, sign) - pred, r, &sign)) return false;
     const int64_t v = pred + r;
     if (v < lo || v > hi) return false;
@@ -392,6 +500,42 @@ bool code_lp_heights(const Level& level, const LpRaster& raster, const LpTable& 
     res[l] = r;
     coded[l] = 1;
     previous = v;
+    return true;
+  };
+  // Dense: the heights and activities live in the grid's cells, written as each cell's first vertex is known.
+  // Sparse (rare: long, thin patches): the 14 taps' heights and activities gathered through the local ids into a
+  // cell view of their own (offset t at index t). One call of code_one serves both (one copy of it in the module).
+  const bool dense = raster.dense();
+  std::vector<int64_t>& ch = raster.cell_height;
+  std::vector<int64_t>& ca = raster.cell_activity;
+  if (dense) {
+    ch.assign(raster.cells(), kLpEmptyCell);
+    ca.assign(raster.cells(), -1);
+  }
+  std::array<uint32_t, kLpOffsets> id;
+  std::array<int64_t, kLpOffsets> tap_height, tap_activity;
+  static constexpr std::array<int64_t, kLpOffsets> kIdentity = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13};
+  for (uint32_t l : raster.order()) {
+    size_t b = 0;
+    uint32_t mask;
+    LpCellView view{tap_height.data(), tap_activity.data(), kIdentity.data()};
+    if (dense) {
+      b = static_cast<size_t>(raster.cell(level.coord[l][0], level.coord[l][1]));
+      view = LpCellView{ch.data() + b, ca.data() + b, raster.deltas()};
+      mask = kLpOccupancyMasks ? raster.mask_at(level.coord[l][0], level.coord[l][1]) : view.mask();
+    } else {
+      mask = raster.taps(level.coord[l][0], level.coord[l][1], id);
+      const LpIdView ids{id, h, &res, &coded};
+      for (int t = 0; t < kLpOffsets; ++t) {
+        tap_height[static_cast<size_t>(t)] = ids.present(t) ? ids.height(t) : kLpEmptyCell;
+        tap_activity[static_cast<size_t>(t)] = ids.activity(t);
+      }
+    }
+    if (!code_one(l, mask, view)) return false;
+    if (dense && raster.owner(static_cast<int64_t>(b)) == l) {
+      ch[b] = h[l];
+      ca[b] = coded[l] ? (res[l] < 0 ? -res[l] : res[l]) : -1;
+    }
   }
   return true;
 }

@@ -92,7 +92,8 @@ uint32_t lers_traversal(const ClosedMesh& mesh, const std::vector<uint8_t>& cls,
 // Vertex valences (triangles per vertex), capped at 255.
 inline std::vector<uint8_t> vertex_valences(const ClosedMesh& mesh) {
   std::vector<uint8_t> v(mesh.num_vertices, 0);
-  for (uint32_t x : mesh.corner_vertex) v[x] = static_cast<uint8_t>(v[x] < 255 ? v[x] + 1 : 255);
+  uint8_t* at = v.data();
+  for (uint32_t x : mesh.corner_vertex) at[x] = static_cast<uint8_t>(at[x] + (at[x] != 255));  // saturating
   return v;
 }
 

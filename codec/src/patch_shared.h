@@ -110,45 +110,53 @@ inline bool base_from_reference(const ClosedMesh& mesh, const PatchSet& ps, size
 // corner 0 is at `base` and corner 1 at base + direction `align`. Fills `level` (coordinates, local triangles),
 // `global` (local -> mesh vertex) and `local` (mesh vertex -> local id, for the vertices of this patch; the caller
 // resets the entries it set). Returns false on a lattice conflict: a vertex reached with two coordinates.
+// One pass: a triangle's ids are taken and its third corner placed before the next triangle is read (the placing
+// of triangle r depends only on triangles 0..r - 1, so this is the two-pass order's result); a coordinate not yet
+// placed holds kUnplaced (no lattice coordinate reaches it: they are bounded by the base, one step per triangle).
+// On a conflict, `level` and `global` hold the triangles up to the failing one only.
 inline bool propagate_patch(const ClosedMesh& mesh, const PatchSet& ps, size_t p, const std::array<int64_t, 2>& base,
                             int align, bool positive, Level& level, std::vector<uint32_t>& global,
                             std::vector<uint32_t>& local) {
   constexpr uint32_t kNone = UINT32_MAX;
+  constexpr int64_t kUnplaced = INT64_MIN;
   const uint32_t* cv = mesh.corner_vertex.data();
+  const uint32_t first = ps.start[p], count = ps.start[p + 1] - first;
   level.coord.clear();
-  level.tris.clear();
+  level.tris.resize(count);
   global.clear();
+  uint32_t* loc = local.data();
   auto id_of = [&](uint32_t v) PRM_WASM_INLINE_LAMBDA {
-    if (local[v] == kNone) {
-      local[v] = static_cast<uint32_t>(global.size());
+    uint32_t id = loc[v];
+    if (id == kNone) {
+      id = static_cast<uint32_t>(global.size());
+      loc[v] = id;
       global.push_back(v);
-      level.coord.push_back({0, 0});
+      level.coord.push_back({kUnplaced, 0});
     }
-    return local[v];
+    return id;
   };
-  std::vector<uint8_t> set;  // per local id: coordinates assigned
-  for (uint32_t r = ps.start[p]; r < ps.start[p + 1]; ++r) {
-    const uint32_t t = ps.order[r];
-    level.tris.push_back({id_of(cv[3 * t]), id_of(cv[3 * t + 1]), id_of(cv[3 * t + 2])});
-  }
-  set.assign(global.size(), 0);
   auto assign = [&](uint32_t id, const std::array<int64_t, 2>& c) {
-    if (set[id]) return level.coord[id] == c;
-    set[id] = 1;
-    level.coord[id] = c;
+    std::array<int64_t, 2>& at = level.coord[id];
+    if (at[0] != kUnplaced) return at == c;
+    at = c;
     return true;
   };
-  const auto& t0 = level.tris[0];
-  const std::array<int64_t, 2> c1 = {base[0] + kDirection[static_cast<size_t>(align)][0],
-                                     base[1] + kDirection[static_cast<size_t>(align)][1]};
-  assign(t0[0], base);
-  if (!assign(t0[1], c1)) return false;
-  if (!assign(t0[2], third_corner(base, c1, positive))) return false;
-  // Breadth-first patch order: every later triangle shares an edge with an earlier one.
-  for (size_t r = 1; r < level.tris.size(); ++r) {
-    const auto& t = level.tris[r];
+  for (uint32_t r = 0; r < count; ++r) {
+    const uint32_t* tc = cv + 3 * size_t{ps.order[first + r]};
+    auto& t = level.tris[r];
+    t = {id_of(tc[0]), id_of(tc[1]), id_of(tc[2])};
+    if (r == 0) {
+      const std::array<int64_t, 2> c1 = {base[0] + kDirection[static_cast<size_t>(align)][0],
+                                         base[1] + kDirection[static_cast<size_t>(align)][1]};
+      assign(t[0], base);
+      if (!assign(t[1], c1)) return false;
+      if (!assign(t[2], third_corner(base, c1, positive))) return false;
+      continue;
+    }
+    // Breadth-first patch order: every later triangle shares an edge with an earlier one.
+    auto placed = [&](uint32_t id) { return level.coord[id][0] != kUnplaced; };
     int k = 0;
-    while (k < 3 && !(set[t[k]] && set[t[(k + 1) % 3]])) ++k;
+    while (k < 3 && !(placed(t[k]) && placed(t[(k + 1) % 3]))) ++k;
     if (k == 3) return false;
     const uint32_t x = t[k], y = t[(k + 1) % 3], z = t[(k + 2) % 3];
     if (!assign(z, third_corner(level.coord[x], level.coord[y], positive))) return false;

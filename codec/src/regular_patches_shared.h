@@ -2,6 +2,7 @@
 // decoder from the closed mesh (§6.1) and the set of irregular triangles (§7).
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -21,6 +22,8 @@ enum TriangleClass : uint8_t {
 inline std::vector<uint8_t> dummy_triangles(const ClosedMesh& mesh) {
   const uint32_t nt = mesh.num_triangles();
   std::vector<uint8_t> cls(nt, kRegular);
+  // A mesh without dummy vertices (no holes, §6.7) has none: one pass over the vertices instead of the corners.
+  if (std::none_of(mesh.is_dummy.begin(), mesh.is_dummy.end(), [](uint8_t d) { return d != 0; })) return cls;
   for (uint32_t t = 0; t < nt; ++t)
     for (int k = 0; k < 3; ++k)
       if (mesh.is_dummy[mesh.corner_vertex[3 * t + k]]) cls[t] = kDummyTriangle;
