@@ -19,11 +19,22 @@ namespace prm::remesh {
 struct DeviationRefinementOptions {
   double max_deviation = 0;  // model units: input vertices farther than this from the mesh are inserted (<= 0: none)
   double max_insert_share = 0.015;  // at most this share of the mesh's vertices is inserted
+  // Before inserting a vertex for a missed input vertex, move an irregular vertex of the closest face out to it
+  // (a thin sheet's rim, cut off by the resampling), when that turns no face over and strays no further.
+  bool move_rim_vertices = true;
+  // Before inserting a vertex for a straying mesh point near an edge, flip that edge when the flip strays less.
+  bool flip_edges = true;
+  // Also measure the input triangles' centroids and edge midpoints near a missed input vertex (in>pr).
+  bool probe_input_faces = true;
+  // Where no split of the closest face can reach a missed input point, split a face next to it that faces the point.
+  bool facing_faces = true;
 };
 
 struct DeviationRefinementStats {
   size_t inserted = 0;  // vertices inserted
   size_t refused = 0;   // deviations left: every split would turn a triangle over
+  size_t flipped = 0;   // edges flipped for a straying mesh point
+  size_t moved = 0;     // irregular vertices moved out to a missed input vertex (rim moves)
   size_t rounds = 0;
 };
 
