@@ -5,8 +5,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdio>
-#include <cstdlib>
 #include <vector>
 
 #include "prm/vec3.h"
@@ -14,13 +12,15 @@
 namespace prm::remesh {
 namespace {
 
-// How far from the split edge towards the wanted point a new vertex may go, tried in this order (an input vertex
-// only: a vertex for a straying mesh point goes onto the input or nowhere, else the next round finds it again).
+// How far from the split edge towards the wanted point a new vertex (or a moved one) may go, tried in this order;
+// part of the way is progress too, and the next round measures what is left.
 constexpr double kShares[] = {1.0, 0.75, 0.5, 0.25};
 // Rounds of insertions (each measures the deviations of the refined mesh again).
 constexpr size_t kMaxRounds = 12;
 // Rim moves of one vertex, over all rounds (a straying point and a missed vertex could push it back and forth).
 constexpr uint8_t kMaxMoves = 2;
+// Input triangles with a vertex farther than this share of the bound from the mesh are probed between their vertices.
+constexpr double kFaceProbeShare = 0.5;
 // The finest barycentric grid (divisions per side) an input triangle near a missed vertex is probed on.
 constexpr double kMaxFaceGrid = 8;
 // A point of a triangle this close to an edge (smallest barycentric coordinate) splits the edge, not the triangle.
@@ -95,7 +95,6 @@ bool insert(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std
     // Inside the triangle: split it in three.
     const std::vector<Tri> tris = {{t[0], t[1], nv}, {t[1], t[2], nv}, {t[2], t[0], nv}};
     for (double share : kShares) {
-      if (share < 1 && strays_from_input(d) && !std::getenv("PRM_REFINE_PARTIAL")) break;
       m.positions[nv] = d.at + share * (d.wanted - d.at);
       if (!faces_agree(m, old_normal, tris)) continue;
       m.triangles[f] = tris[0];
@@ -127,7 +126,6 @@ bool insert(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std
     const Vec3 on_edge = pa + s * (pb - pa);
     const Vec3 normal_u = face_normal(m, u);
     for (double share : kShares) {
-      if (share < 1 && strays_from_input(d) && !std::getenv("PRM_REFINE_PARTIAL")) break;
       m.positions[nv] = on_edge + share * (d.wanted - on_edge);
       if (!faces_agree(m, old_normal, mine) || !faces_agree(m, normal_u, theirs)) continue;
       m.triangles[f] = mine[0];
@@ -294,7 +292,6 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
   std::vector<uint8_t> used(input.positions.size(), 0);
   for (const Tri& t : input.triangles)
     for (uint32_t v : t) used[v] = 1;
-  std::vector<uint8_t> refused(input.positions.size(), 0);
   const double bound2 = options.max_deviation * options.max_deviation;
   std::vector<std::vector<uint32_t>> vertex_faces;
   std::vector<uint8_t> moved;  // rim moves per vertex, over all rounds (at most kMaxMoves: no back and forth)
@@ -304,7 +301,7 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
     const AabbTree tree(m);
     std::vector<AabbTree::Hit> hits(input.positions.size());
     tbb::parallel_for(size_t{0}, input.positions.size(), [&](size_t v) {
-      if (used[v] && (!refused[v] || std::getenv("PRM_REFINE_RETRY"))) hits[v] = tree.closest(input.positions[v]);
+      if (used[v]) hits[v] = tree.closest(input.positions[v]);
     });
     std::vector<Deviation> far;
     for (uint32_t v = 0; v < hits.size(); ++v)
@@ -312,14 +309,14 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
         far.push_back({hits[v].face, hits[v].point, input.positions[v], hits[v].distance2, v});
     // in>pr between the input's vertices: the centroid and edge midpoints of the input triangles with a vertex
     // farther than half the bound (Metro samples the faces, and a thin tip's faces stray more than its vertices).
-    if (options.probe_input_faces) {
+    if (options.thin_sheets) {
       std::vector<uint32_t> near_far;
       for (uint32_t f = 0; f < input.triangles.size(); ++f) {
         const Tri& t = input.triangles[f];
         double worst = 0;
         for (uint32_t v : t)
           if (hits[v].found()) worst = std::max(worst, hits[v].distance2);
-        if (worst > (std::getenv("PRM_REFINE_FACEF") ? std::atof(std::getenv("PRM_REFINE_FACEF")) : 0.25) * bound2) near_far.push_back(f);
+        if (worst > kFaceProbeShare * kFaceProbeShare * bound2) near_far.push_back(f);
       }
       // Each such triangle is probed on a barycentric grid about as fine as the bound (a long triangle on a thin
       // tip strays most between its vertices), and its worst probe is the deviation.
@@ -348,7 +345,7 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
           far.push_back({face_hit[i].face, face_hit[i].point, face_point[i], face_hit[i].distance2, kInputPoint});
     }
     // pr>in at the mesh's vertices (an irregular vertex left out on a tip is moved back towards the input).
-    if (options.move_rim_vertices) {
+    if (options.thin_sheets) {
       std::vector<uint32_t> a_face(m.positions.size(), UINT32_MAX);
       for (uint32_t f = 0; f < m.triangles.size(); ++f)
         for (uint32_t v : m.triangles[f]) a_face[v] = f;
@@ -397,71 +394,31 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
     std::vector<uint8_t> touched(m.triangles.size(), 0);
     moved.resize(m.positions.size(), 0);
     size_t inserted_this_round = 0;
-    size_t dbg_k = 0;
     for (const Deviation& d : far) {
-      if (std::getenv("PRM_DEBUG_REFINE") && dbg_k++ < 3) {
-        const Tri& t = m.triangles[d.face];
-        const auto bc = barycentric(m, t, d.at);
-        std::fprintf(stderr, "  top d %.3e iv %d face %u touched %d bc %.2f %.2f %.2f lattice %d%d%d at %.4f %.4f %.4f wanted %.4f %.4f %.4f\n",
-                     std::sqrt(d.distance2), d.input_vertex != UINT32_MAX, d.face, int(touched[d.face]), bc[0], bc[1], bc[2],
-                     t[0] < prm.vertex_relief.size() && prm.vertex_relief[t[0]] >= 0,
-                     t[1] < prm.vertex_relief.size() && prm.vertex_relief[t[1]] >= 0,
-                     t[2] < prm.vertex_relief.size() && prm.vertex_relief[t[2]] >= 0, d.at[0], d.at[1], d.at[2],
-                     d.wanted[0], d.wanted[1], d.wanted[2]);
-      }
       if (st.inserted >= budget) break;
       if (touched[d.face]) continue;
-      if (options.move_rim_vertices && (!strays_from_input(d) || !std::getenv("PRM_REFINE_NOMOVEPR")) &&
+      if (options.thin_sheets &&
           move_rim_vertex(m, vertex_faces, prm, input_tree, bound2, touched, moved, d)) {
         ++st.moved;
         ++inserted_this_round;
         continue;
       }
       if (d.input_vertex == kMeshVertex) continue;  // moved or left
-      if (options.flip_edges && d.input_vertex == kMeshPoint &&
+      if (options.thin_sheets && d.input_vertex == kMeshPoint &&
           flip_straying_edge(m, vertex_faces, input_tree, touched, d)) {
         ++st.flipped;
         ++inserted_this_round;
         continue;
       }
       if (insert(m, vertex_faces, touched, d) ||
-          (options.facing_faces && !strays_from_input(d) && insert_on_facing_face(m, vertex_faces, touched, d))) {
+          (options.thin_sheets && !strays_from_input(d) && insert_on_facing_face(m, vertex_faces, touched, d))) {
         ++st.inserted;
         ++inserted_this_round;
       } else {
         ++st.refused;
-        if (std::getenv("PRM_DEBUG_REFINE")) {
-          const Tri& t = m.triangles[d.face];
-          const auto bc = barycentric(m, t, d.at);
-          std::fprintf(stderr, "refused round %zu d %.3e iv %u face %u touched? bc %.3f %.3f %.3f lattice %d%d%d at %.4f %.4f %.4f\n",
-                       st.rounds, std::sqrt(d.distance2), d.input_vertex, d.face, bc[0], bc[1], bc[2],
-                       t[0] < prm.vertex_relief.size() && prm.vertex_relief[t[0]] >= 0,
-                       t[1] < prm.vertex_relief.size() && prm.vertex_relief[t[1]] >= 0,
-                       t[2] < prm.vertex_relief.size() && prm.vertex_relief[t[2]] >= 0, d.wanted[0], d.wanted[1], d.wanted[2]);
-        }
-        if (d.input_vertex < refused.size()) refused[d.input_vertex] = 1;
       }
     }
-    if (std::getenv("PRM_DEBUG_REFINE"))
-      std::fprintf(stderr, "round %zu far %zu (in>pr %zu) inserted %zu moved %zu flipped %zu refused %zu budget %zu worst %.3e\n",
-                   st.rounds, far.size(),
-                   static_cast<size_t>(std::count_if(far.begin(), far.end(),
-                                                     [](const Deviation& x) { return x.input_vertex != UINT32_MAX; })),
-                   st.inserted, st.moved, st.flipped, st.refused, budget, std::sqrt(far[0].distance2));
     if (inserted_this_round == 0) break;
-  }
-  if (const char* dp = std::getenv("PRM_DEBUG_POINT")) {
-    Vec3 q{};
-    std::sscanf(dp, "%lf %lf %lf", &q[0], &q[1], &q[2]);
-    const AabbTree tree(m);
-    const auto h = tree.closest(q);
-    uint32_t best = 0;
-    for (uint32_t v = 0; v < input.positions.size(); ++v)
-      if (norm2(input.positions[v] - q) < norm2(input.positions[best] - q)) best = v;
-    const auto hv = tree.closest(input.positions[best]);
-    std::fprintf(stderr, "point: to mesh %.3e; nearest input vertex %u at %.3e from it, %.3e from the mesh, used %d refused %d\n",
-                 std::sqrt(h.distance2), best, std::sqrt(norm2(input.positions[best] - q)), std::sqrt(hv.distance2),
-                 int(used[best]), int(refused[best]));
   }
   // Labels: the new vertices are irregular, and every triangle is labelled again (the split ones lost regularity).
   prm.vertex_relief.resize(m.positions.size(), -1);

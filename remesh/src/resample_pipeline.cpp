@@ -6,7 +6,6 @@
 #include <memory>
 
 #include <algorithm>
-#include <cstdlib>
 #include <chrono>
 #include <cstdio>
 #include <numeric>
@@ -209,11 +208,7 @@ PrmMesh resample_and_merge(const LayoutInput& layout, const ResampleOptions& opt
   if (options.max_deviation > 0) {
     DeviationRefinementOptions dro;
     dro.max_deviation = options.max_deviation;
-    if (std::getenv("PRM_REFINE_BUDGET")) dro.max_insert_share = std::atof(std::getenv("PRM_REFINE_BUDGET"));
-    if (std::getenv("PRM_REFINE_NOMOVE")) dro.move_rim_vertices = false;
-    if (std::getenv("PRM_REFINE_NOFLIP")) dro.flip_edges = false;
-    if (std::getenv("PRM_REFINE_NOFACES")) dro.probe_input_faces = false;
-    if (std::getenv("PRM_REFINE_NOFACING")) dro.facing_faces = false;
+    dro.thin_sheets = options.refine_thin_sheets;
     const DeviationRefinementStats ds = refine_deviations(prm, input, tree, dro);
     st.deviation_inserts = ds.inserted;
     st.deviation_refused = ds.refused;
@@ -232,17 +227,6 @@ PrmMesh resample_and_merge(const LayoutInput& layout, const ResampleOptions& opt
   st.quantized_unresolved = qs.unresolved;
   st.quantized_turned = qs.turned;
   st.quantized_collapses = qs.collapsed;
-  if (options.max_deviation > 0 && std::getenv("PRM_REFINE_AGAIN") && (qs.moved > 0 || qs.collapsed > 0)) {
-    DeviationRefinementOptions dro;
-    dro.max_deviation = options.max_deviation;
-    const DeviationRefinementStats ds = refine_deviations(prm, input, tree, dro);
-    st.deviation_inserts += ds.inserted;
-    st.deviation_moves += ds.moved;
-    const QuantizedSeparationStats q2 = separate_quantized_vertices(prm, &input, &tree);
-    st.quantized_moves += q2.moved;
-    st.quantized_collapses += q2.collapsed;
-    std::fprintf(stderr, "again: inserted %zu moved %zu; separation moved %zu collapsed %zu\n", ds.inserted, ds.moved, q2.moved, q2.collapsed);
-  }
   if (qs.collapsed > 0) {  // fewer vertices and faces, and the faces that took a collapsed vertex's place relabelled
     st.vertices = prm.mesh.positions.size();
     st.faces = prm.mesh.triangles.size();

@@ -43,6 +43,7 @@ struct ResampleOptions {
   // Local refinement (deviation_refinement.h): input vertices farther than this from the merged mesh (model units)
   // are inserted as irregular vertices. <= 0: none.
   double max_deviation = 0;
+  bool refine_thin_sheets = true;  // the refinement's thin-sheet steps (DeviationRefinementOptions::thin_sheets)
   // The AABB tree of the layout's input mesh, if the caller has one (null: built for each call; at 2M input
   // vertices that is 4.3M triangles, 470 MB and seconds a grid round).
   const AabbTree* input_tree = nullptr;
