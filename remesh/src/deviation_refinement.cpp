@@ -78,6 +78,25 @@ struct Deviation {
 constexpr uint32_t kMeshPoint = UINT32_MAX, kInputPoint = UINT32_MAX - 1, kMeshVertex = UINT32_MAX - 2;
 bool strays_from_input(const Deviation& d) { return d.input_vertex == kMeshPoint || d.input_vertex == kMeshVertex; }
 
+// Splits face f in three at the new vertex nv, placed at `to` or, where that turns a triangle over, part of the way
+// there from `from` (kShares). False (f unchanged) when every place turns one over.
+bool split_in_three(Mesh& m, std::vector<uint8_t>& touched, uint32_t f, uint32_t nv, const Vec3& from, const Vec3& to) {
+  const Tri t = m.triangles[f];
+  const Vec3 old_normal = face_normal(m, t);
+  const std::vector<Tri> tris = {{t[0], t[1], nv}, {t[1], t[2], nv}, {t[2], t[0], nv}};
+  for (double share : kShares) {
+    m.positions[nv] = from + share * (to - from);
+    if (!faces_agree(m, old_normal, tris)) continue;
+    m.triangles[f] = tris[0];
+    m.triangles.push_back(tris[1]);
+    m.triangles.push_back(tris[2]);
+    touched[f] = 1;
+    touched.resize(m.triangles.size(), 1);
+    return true;
+  }
+  return false;
+}
+
 // Inserts a vertex for d into m (splitting d.face, or one of its edges and the triangle across it). False when every
 // way of doing so turns a triangle over or touches a triangle changed in this round.
 bool insert(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std::vector<uint8_t>& touched,
@@ -93,17 +112,7 @@ bool insert(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std
             [&](int x, int y) { return bc[static_cast<size_t>(x)] < bc[static_cast<size_t>(y)]; });
   if (bc[static_cast<size_t>(corners[0])] > kEdgeBarycentric) {
     // Inside the triangle: split it in three.
-    const std::vector<Tri> tris = {{t[0], t[1], nv}, {t[1], t[2], nv}, {t[2], t[0], nv}};
-    for (double share : kShares) {
-      m.positions[nv] = d.at + share * (d.wanted - d.at);
-      if (!faces_agree(m, old_normal, tris)) continue;
-      m.triangles[f] = tris[0];
-      m.triangles.push_back(tris[1]);
-      m.triangles.push_back(tris[2]);
-      touched[f] = 1;
-      touched.resize(m.triangles.size(), 1);
-      return true;
-    }
+    if (split_in_three(m, touched, f, nv, d.at, d.wanted)) return true;
   }
   // Near an edge (or where the split in three turns a triangle over): split an edge and both its triangles. The new
   // vertex at the wanted point or, where that turns a triangle over (beyond a corner or a sharp crease), part of the
@@ -164,20 +173,9 @@ bool insert_on_facing_face(Mesh& m, const std::vector<std::vector<uint32_t>>& ve
   const uint32_t nv = static_cast<uint32_t>(m.positions.size());
   m.positions.push_back(d.wanted);
   for (const auto& [cosine, h] : candidates) {
-    const Tri t = m.triangles[h];
-    const Vec3 old_normal = face_normal(m, t);
+    const Tri& t = m.triangles[h];
     const Vec3 centroid = (1.0 / 3) * (m.positions[t[0]] + m.positions[t[1]] + m.positions[t[2]]);
-    const std::vector<Tri> tris = {{t[0], t[1], nv}, {t[1], t[2], nv}, {t[2], t[0], nv}};
-    for (double share : kShares) {
-      m.positions[nv] = centroid + share * (d.wanted - centroid);
-      if (!faces_agree(m, old_normal, tris)) continue;
-      m.triangles[h] = tris[0];
-      m.triangles.push_back(tris[1]);
-      m.triangles.push_back(tris[2]);
-      touched[h] = 1;
-      touched.resize(m.triangles.size(), 1);
-      return true;
-    }
+    if (split_in_three(m, touched, h, nv, centroid, d.wanted)) return true;
   }
   m.positions.pop_back();
   return false;
