@@ -90,7 +90,7 @@ PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bit
   // target.
   ro.max_error = kQuantizationMargin * options.max_error;
   ro.refine_error = options.max_error > 0      ? kRefineShare * options.max_error
-                    : options.refine_deviations ? kRefineShare * kDefaultMaxErrorPerTarget * options.target_error
+                    : options.refine_deviations ? kLocalRefineShare * kDefaultMaxErrorPerTarget * options.target_error
                                                 : 0;
   // The search measures what the decoder will output: the candidate quantized to the stream's frame (its lattice
   // vertices are exact already; the heights and the other vertices round to the nearest step), or, when the

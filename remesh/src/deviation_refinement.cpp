@@ -12,11 +12,17 @@
 namespace prm::remesh {
 namespace {
 
-// How far from the split edge towards the wanted point a new vertex may go, tried in this order (an input vertex
-// only: a vertex for a straying mesh point goes onto the input or nowhere, else the next round finds it again).
+// How far from the split edge towards the wanted point a new vertex (or a moved one) may go, tried in this order;
+// part of the way is progress too, and the next round measures what is left.
 constexpr double kShares[] = {1.0, 0.75, 0.5, 0.25};
 // Rounds of insertions (each measures the deviations of the refined mesh again).
 constexpr size_t kMaxRounds = 12;
+// Rim moves of one vertex, over all rounds (a straying point and a missed vertex could push it back and forth).
+constexpr uint8_t kMaxMoves = 2;
+// Input triangles with a vertex farther than this share of the bound from the mesh are probed between their vertices.
+constexpr double kFaceProbeShare = 0.5;
+// The finest barycentric grid (divisions per side) an input triangle near a missed vertex is probed on.
+constexpr double kMaxFaceGrid = 8;
 // A point of a triangle this close to an edge (smallest barycentric coordinate) splits the edge, not the triangle.
 constexpr double kEdgeBarycentric = 0.02;
 // The points of a mesh triangle measured against the input (pr>in): its centroid and its edges' midpoints.
@@ -65,8 +71,31 @@ struct Deviation {
   Vec3 at;
   Vec3 wanted;
   double distance2;
-  uint32_t input_vertex;  // UINT32_MAX for a mesh point
+  uint32_t input_vertex;  // an input vertex; kMeshPoint, kInputPoint or kMeshVertex for the others
+  uint32_t vertex = UINT32_MAX;  // kMeshVertex: the mesh vertex that strays
 };
+// A point of a mesh triangle (pr>in), a point of an input triangle (in>pr), a mesh vertex (pr>in: moved only).
+constexpr uint32_t kMeshPoint = UINT32_MAX, kInputPoint = UINT32_MAX - 1, kMeshVertex = UINT32_MAX - 2;
+bool strays_from_input(const Deviation& d) { return d.input_vertex == kMeshPoint || d.input_vertex == kMeshVertex; }
+
+// Splits face f in three at the new vertex nv, placed at `to` or, where that turns a triangle over, part of the way
+// there from `from` (kShares). False (f unchanged) when every place turns one over.
+bool split_in_three(Mesh& m, std::vector<uint8_t>& touched, uint32_t f, uint32_t nv, const Vec3& from, const Vec3& to) {
+  const Tri t = m.triangles[f];
+  const Vec3 old_normal = face_normal(m, t);
+  const std::vector<Tri> tris = {{t[0], t[1], nv}, {t[1], t[2], nv}, {t[2], t[0], nv}};
+  for (double share : kShares) {
+    m.positions[nv] = from + share * (to - from);
+    if (!faces_agree(m, old_normal, tris)) continue;
+    m.triangles[f] = tris[0];
+    m.triangles.push_back(tris[1]);
+    m.triangles.push_back(tris[2]);
+    touched[f] = 1;
+    touched.resize(m.triangles.size(), 1);
+    return true;
+  }
+  return false;
+}
 
 // Inserts a vertex for d into m (splitting d.face, or one of its edges and the triangle across it). False when every
 // way of doing so turns a triangle over or touches a triangle changed in this round.
@@ -83,23 +112,15 @@ bool insert(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std
             [&](int x, int y) { return bc[static_cast<size_t>(x)] < bc[static_cast<size_t>(y)]; });
   if (bc[static_cast<size_t>(corners[0])] > kEdgeBarycentric) {
     // Inside the triangle: split it in three.
-    const std::vector<Tri> tris = {{t[0], t[1], nv}, {t[1], t[2], nv}, {t[2], t[0], nv}};
-    for (double share : kShares) {
-      if (share < 1 && d.input_vertex == UINT32_MAX) break;
-      m.positions[nv] = d.at + share * (d.wanted - d.at);
-      if (!faces_agree(m, old_normal, tris)) continue;
-      m.triangles[f] = tris[0];
-      m.triangles.push_back(tris[1]);
-      m.triangles.push_back(tris[2]);
-      touched[f] = 1;
-      touched.resize(m.triangles.size(), 1);
-      return true;
-    }
+    if (split_in_three(m, touched, f, nv, d.at, d.wanted)) return true;
   }
   // Near an edge (or where the split in three turns a triangle over): split an edge and both its triangles. The new
   // vertex at the wanted point or, where that turns a triangle over (beyond a corner or a sharp crease), part of the
   // way there from the edge.
+  const bool on_edge_point = bc[static_cast<size_t>(corners[0])] <= kEdgeBarycentric;
   for (int k : corners) {
+    // A point on an edge: only that edge (splitting another one leaves the point where it was, and a sliver).
+    if (on_edge_point && k != corners[0]) break;
     const uint32_t a = t[static_cast<size_t>((k + 1) % 3)], b = t[static_cast<size_t>((k + 2) % 3)],
                    c = t[static_cast<size_t>(k)];
     const int64_t g = other_face(m, vertex_faces, a, b, f);
@@ -114,7 +135,6 @@ bool insert(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std
     const Vec3 on_edge = pa + s * (pb - pa);
     const Vec3 normal_u = face_normal(m, u);
     for (double share : kShares) {
-      if (share < 1 && d.input_vertex == UINT32_MAX) break;
       m.positions[nv] = on_edge + share * (d.wanted - on_edge);
       if (!faces_agree(m, old_normal, mine) || !faces_agree(m, normal_u, theirs)) continue;
       m.triangles[f] = mine[0];
@@ -131,6 +151,134 @@ bool insert(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std
   return false;
 }
 
+// A missed input point beyond a corner or an edge of the mesh (a thin sheet's tip, cut off by the resampling): a
+// split of the closest face would turn a triangle over, but a face next to it may face the point (the strip that
+// closes the sheet, whose normal points along the sheet). Among the faces around d.face's corners, those facing the
+// point best first, the first whose split in three with the new vertex at the point (or part of the way there from
+// its centroid) turns nothing over is split. False when none is.
+bool insert_on_facing_face(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces,
+                           std::vector<uint8_t>& touched, const Deviation& d) {
+  std::vector<std::pair<double, uint32_t>> candidates;  // (-cosine, face)
+  for (uint32_t v : m.triangles[d.face])
+    for (uint32_t h : vertex_faces[v]) {
+      if (touched[h]) continue;
+      const Tri& t = m.triangles[h];
+      const Vec3 centroid = (1.0 / 3) * (m.positions[t[0]] + m.positions[t[1]] + m.positions[t[2]]);
+      const Vec3 n = face_normal(m, t), to = d.wanted - centroid;
+      const double len = norm(n) * norm(to);
+      if (len > 0 && dot(n, to) > 0) candidates.push_back({-dot(n, to) / len, h});
+    }
+  std::sort(candidates.begin(), candidates.end());
+  candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+  const uint32_t nv = static_cast<uint32_t>(m.positions.size());
+  m.positions.push_back(d.wanted);
+  for (const auto& [cosine, h] : candidates) {
+    const Tri& t = m.triangles[h];
+    const Vec3 centroid = (1.0 / 3) * (m.positions[t[0]] + m.positions[t[1]] + m.positions[t[2]]);
+    if (split_in_three(m, touched, h, nv, centroid, d.wanted)) return true;
+  }
+  m.positions.pop_back();
+  return false;
+}
+
+// The largest squared distance to the input of the probe points (kProbes) of the faces around a vertex.
+double probe_deviation2(const Mesh& m, const std::vector<uint32_t>& faces, const AabbTree& input_tree) {
+  double worst = 0;
+  for (uint32_t f : faces) {
+    const Tri& t = m.triangles[f];
+    for (const auto& w : kProbes) {
+      const Vec3 p = w[0] * m.positions[t[0]] + w[1] * m.positions[t[1]] + w[2] * m.positions[t[2]];
+      worst = std::max(worst, input_tree.closest(p).distance2);
+    }
+  }
+  return worst;
+}
+
+// A triangle that strays from the input at a point near its edge a-b (pr>in: it bridges a notch or the fold of a
+// thin sheet) may follow the input with that edge flipped, at no cost in vertices: the pair (c, a, b), (b, a, e)
+// becomes (c, a, e), (c, e, b) when c-e is not an edge yet, neither new face turns over against the pair, and the
+// new faces' probe points stray less than the old ones'. False when the flip is not made.
+bool flip_straying_edge(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, const AabbTree& input_tree,
+                        std::vector<uint8_t>& touched, const Deviation& d) {
+  const uint32_t f = d.face;
+  const Tri t = m.triangles[f];
+  const std::array<double, 3> bc = barycentric(m, t, d.at);
+  const size_t k = static_cast<size_t>(std::min_element(bc.begin(), bc.end()) - bc.begin());
+  if (bc[k] > kEdgeBarycentric) return false;
+  const uint32_t c = t[k], a = t[(k + 1) % 3], b = t[(k + 2) % 3];
+  const int64_t g = other_face(m, vertex_faces, a, b, f);
+  if (g < 0 || touched[static_cast<size_t>(g)]) return false;
+  const Tri u = m.triangles[static_cast<size_t>(g)];
+  uint32_t e = u[0];
+  for (uint32_t x : u)
+    if (x != a && x != b) e = x;
+  if (e == c) return false;
+  for (uint32_t h : vertex_faces[c]) {
+    const Tri& w = m.triangles[h];
+    if (w[0] == e || w[1] == e || w[2] == e) return false;  // c-e is an edge already
+  }
+  const Vec3 pair_normal = face_normal(m, t) + face_normal(m, u);
+  const Tri old_f = t, old_g = u;
+  const double before = probe_deviation2(m, {f, static_cast<uint32_t>(g)}, input_tree);
+  m.triangles[f] = {c, a, e};
+  m.triangles[static_cast<size_t>(g)] = {c, e, b};
+  if (faces_agree(m, pair_normal, {m.triangles[f], m.triangles[static_cast<size_t>(g)]}) &&
+      probe_deviation2(m, {f, static_cast<uint32_t>(g)}, input_tree) < before) {
+    touched[f] = 1;
+    touched[static_cast<size_t>(g)] = 1;
+    return true;
+  }
+  m.triangles[f] = old_f;
+  m.triangles[static_cast<size_t>(g)] = old_g;
+  return false;
+}
+
+// A thin sheet's rim (issue 22): where the resampling cut a tip off, the mesh's closest point to the missed input
+// vertex lies on the seam that closes the sheet, between irregular vertices. Moving one of them out to the input
+// vertex (or part of the way) follows the tip at no cost in vertices. Tries the face's irregular vertices, nearest
+// the wanted point first; a move is kept when no face around the vertex turns over and the faces' probe points stay
+// within the bound (or within what they strayed before). False when no move is kept.
+bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, const PrmMesh& prm,
+                     const AabbTree& input_tree, double bound2, std::vector<uint8_t>& touched,
+                     std::vector<uint8_t>& moved, const Deviation& d) {
+  const Tri t = m.triangles[d.face];
+  std::array<uint32_t, 3> order = {t[0], t[1], t[2]};
+  std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+    return norm2(m.positions[a] - d.wanted) < norm2(m.positions[b] - d.wanted);
+  });
+  if (d.input_vertex == kMeshVertex) order = {d.vertex, d.vertex, d.vertex};
+  for (uint32_t v : order) {
+    if (v < prm.vertex_relief.size() && prm.vertex_relief[v] >= 0) continue;  // a lattice vertex stays
+    if (v >= moved.size() || moved[v] >= kMaxMoves) continue;  // inserted in this round, or moved enough
+    const std::vector<uint32_t>& faces = vertex_faces[v];
+    if (std::any_of(faces.begin(), faces.end(), [&](uint32_t f) { return touched[f] != 0; })) continue;
+    std::vector<Vec3> normals;
+    for (uint32_t f : faces) normals.push_back(face_normal(m, m.triangles[f]));
+    const Vec3 from = m.positions[v];
+    // A missed input vertex: the vertex goes to it. A straying mesh point: the vertex moves as the point should, and
+    // its faces must stray less than before.
+    const bool mesh_point = strays_from_input(d);
+    const Vec3 to = mesh_point ? from + (d.wanted - d.at) : d.wanted;
+    const double before2 = probe_deviation2(m, faces, input_tree);
+    const double allowed2 = mesh_point ? before2 * 0.999 : std::max(bound2, before2);
+    for (double share : kShares) {
+      m.positions[v] = from + share * (to - from);
+      bool ok = true;
+      for (size_t k = 0; k < faces.size() && ok; ++k) {
+        const Vec3 n = face_normal(m, m.triangles[faces[k]]);
+        ok = dot(n, normals[k]) > 1e-3 * norm(n) * norm(normals[k]);
+      }
+      if (ok && probe_deviation2(m, faces, input_tree) <= allowed2) {
+        for (uint32_t f : faces) touched[f] = 1;
+        ++moved[v];
+        return true;
+      }
+    }
+    m.positions[v] = from;
+  }
+  return false;
+}
+
 }  // namespace
 
 DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, const AabbTree& input_tree,
@@ -142,21 +290,72 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
   std::vector<uint8_t> used(input.positions.size(), 0);
   for (const Tri& t : input.triangles)
     for (uint32_t v : t) used[v] = 1;
-  std::vector<uint8_t> refused(input.positions.size(), 0);
   const double bound2 = options.max_deviation * options.max_deviation;
   std::vector<std::vector<uint32_t>> vertex_faces;
+  std::vector<uint8_t> moved;  // rim moves per vertex, over all rounds (at most kMaxMoves: no back and forth)
   while (st.rounds < kMaxRounds && st.inserted < budget) {
     ++st.rounds;
     // in>pr: the input vertices far from the mesh.
     const AabbTree tree(m);
     std::vector<AabbTree::Hit> hits(input.positions.size());
     tbb::parallel_for(size_t{0}, input.positions.size(), [&](size_t v) {
-      if (used[v] && !refused[v]) hits[v] = tree.closest(input.positions[v]);
+      if (used[v]) hits[v] = tree.closest(input.positions[v]);
     });
     std::vector<Deviation> far;
     for (uint32_t v = 0; v < hits.size(); ++v)
       if (hits[v].found() && hits[v].distance2 > bound2)
         far.push_back({hits[v].face, hits[v].point, input.positions[v], hits[v].distance2, v});
+    // in>pr between the input's vertices: the centroid and edge midpoints of the input triangles with a vertex
+    // farther than half the bound (Metro samples the faces, and a thin tip's faces stray more than its vertices).
+    if (options.thin_sheets) {
+      std::vector<uint32_t> near_far;
+      for (uint32_t f = 0; f < input.triangles.size(); ++f) {
+        const Tri& t = input.triangles[f];
+        double worst = 0;
+        for (uint32_t v : t)
+          if (hits[v].found()) worst = std::max(worst, hits[v].distance2);
+        if (worst > kFaceProbeShare * kFaceProbeShare * bound2) near_far.push_back(f);
+      }
+      // Each such triangle is probed on a barycentric grid about as fine as the bound (a long triangle on a thin
+      // tip strays most between its vertices), and its worst probe is the deviation.
+      std::vector<AabbTree::Hit> face_hit(near_far.size());
+      std::vector<Vec3> face_point(near_far.size());
+      tbb::parallel_for(size_t{0}, near_far.size(), [&](size_t i) {
+        const Tri& t = input.triangles[near_far[i]];
+        const Vec3 &a = input.positions[t[0]], &b = input.positions[t[1]], &c = input.positions[t[2]];
+        const double longest = std::sqrt(std::max({norm2(b - a), norm2(c - b), norm2(a - c)}));
+        const int n = static_cast<int>(std::clamp(std::ceil(longest / options.max_deviation), 2.0, kMaxFaceGrid));
+        for (int p = 0; p <= n; ++p)
+          for (int q = 0; p + q <= n; ++q) {
+            const int r = n - p - q;
+            if ((p == n || q == n || r == n)) continue;  // the vertices are measured already
+            const Vec3 x = (1.0 / n) * (static_cast<double>(p) * a + static_cast<double>(q) * b +
+                                        static_cast<double>(r) * c);
+            const AabbTree::Hit h = tree.closest(x);
+            if (h.found() && (!face_hit[i].found() || h.distance2 > face_hit[i].distance2)) {
+              face_hit[i] = h;
+              face_point[i] = x;
+            }
+          }
+      });
+      for (size_t i = 0; i < near_far.size(); ++i)
+        if (face_hit[i].found() && face_hit[i].distance2 > bound2)
+          far.push_back({face_hit[i].face, face_hit[i].point, face_point[i], face_hit[i].distance2, kInputPoint});
+    }
+    // pr>in at the mesh's vertices (an irregular vertex left out on a tip is moved back towards the input).
+    if (options.thin_sheets) {
+      std::vector<uint32_t> a_face(m.positions.size(), UINT32_MAX);
+      for (uint32_t f = 0; f < m.triangles.size(); ++f)
+        for (uint32_t v : m.triangles[f]) a_face[v] = f;
+      std::vector<AabbTree::Hit> vertex_hits(m.positions.size());
+      tbb::parallel_for(size_t{0}, m.positions.size(), [&](size_t v) {
+        const bool lattice = v < prm.vertex_relief.size() && prm.vertex_relief[v] >= 0;
+        if (!lattice && a_face[v] != UINT32_MAX) vertex_hits[v] = input_tree.closest(m.positions[v]);
+      });
+      for (uint32_t v = 0; v < vertex_hits.size(); ++v)
+        if (vertex_hits[v].found() && vertex_hits[v].distance2 > bound2)
+          far.push_back({a_face[v], m.positions[v], vertex_hits[v].point, vertex_hits[v].distance2, kMeshVertex, v});
+    }
     // pr>in: the mesh's triangles whose centroid or edge midpoints are far from the input.
     std::vector<std::array<AabbTree::Hit, 4>> probes(m.triangles.size());
     tbb::parallel_for(size_t{0}, m.triangles.size(), [&](size_t f) {
@@ -177,29 +376,44 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
       if (worst == 4) continue;
       const Vec3 p = kProbes[worst][0] * m.positions[t[0]] + kProbes[worst][1] * m.positions[t[1]] +
                      kProbes[worst][2] * m.positions[t[2]];
-      far.push_back({f, p, probes[f][worst].point, probes[f][worst].distance2, UINT32_MAX});
+      far.push_back({f, p, probes[f][worst].point, probes[f][worst].distance2, kMeshPoint});
     }
     if (far.empty()) break;
     // Farthest first; one insertion per triangle neighbourhood in a round (the rest is measured again next round).
     std::sort(far.begin(), far.end(), [](const Deviation& a, const Deviation& b) {
       if (a.distance2 != b.distance2) return a.distance2 > b.distance2;
       if (a.face != b.face) return a.face < b.face;
-      return a.input_vertex < b.input_vertex;
+      if (a.input_vertex != b.input_vertex) return a.input_vertex < b.input_vertex;
+      return a.vertex < b.vertex;
     });
     vertex_faces.assign(m.positions.size(), {});
     for (uint32_t f = 0; f < m.triangles.size(); ++f)
       for (uint32_t v : m.triangles[f]) vertex_faces[v].push_back(f);
     std::vector<uint8_t> touched(m.triangles.size(), 0);
+    moved.resize(m.positions.size(), 0);
     size_t inserted_this_round = 0;
     for (const Deviation& d : far) {
       if (st.inserted >= budget) break;
       if (touched[d.face]) continue;
-      if (insert(m, vertex_faces, touched, d)) {
+      if (options.thin_sheets &&
+          move_rim_vertex(m, vertex_faces, prm, input_tree, bound2, touched, moved, d)) {
+        ++st.moved;
+        ++inserted_this_round;
+        continue;
+      }
+      if (d.input_vertex == kMeshVertex) continue;  // moved or left
+      if (options.thin_sheets && d.input_vertex == kMeshPoint &&
+          flip_straying_edge(m, vertex_faces, input_tree, touched, d)) {
+        ++st.flipped;
+        ++inserted_this_round;
+        continue;
+      }
+      if (insert(m, vertex_faces, touched, d) ||
+          (options.thin_sheets && !strays_from_input(d) && insert_on_facing_face(m, vertex_faces, touched, d))) {
         ++st.inserted;
         ++inserted_this_round;
       } else {
         ++st.refused;
-        if (d.input_vertex != UINT32_MAX) refused[d.input_vertex] = 1;
       }
     }
     if (inserted_this_round == 0) break;

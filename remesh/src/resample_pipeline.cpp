@@ -208,9 +208,11 @@ PrmMesh resample_and_merge(const LayoutInput& layout, const ResampleOptions& opt
   if (options.max_deviation > 0) {
     DeviationRefinementOptions dro;
     dro.max_deviation = options.max_deviation;
+    dro.thin_sheets = options.refine_thin_sheets;
     const DeviationRefinementStats ds = refine_deviations(prm, input, tree, dro);
     st.deviation_inserts = ds.inserted;
     st.deviation_refused = ds.refused;
+    st.deviation_moves = ds.moved;
     st.vertices = prm.mesh.positions.size();
     st.faces = prm.mesh.triangles.size();
     st.regular_faces = static_cast<size_t>(std::count(prm.face_regular.begin(), prm.face_regular.end(), 1));

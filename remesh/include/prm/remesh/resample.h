@@ -43,6 +43,7 @@ struct ResampleOptions {
   // Local refinement (deviation_refinement.h): input vertices farther than this from the merged mesh (model units)
   // are inserted as irregular vertices. <= 0: none.
   double max_deviation = 0;
+  bool refine_thin_sheets = true;  // the refinement's thin-sheet steps (DeviationRefinementOptions::thin_sheets)
   // The AABB tree of the layout's input mesh, if the caller has one (null: built for each call; at 2M input
   // vertices that is 4.3M triangles, 470 MB and seconds a grid round).
   const AabbTree* input_tree = nullptr;
@@ -59,6 +60,7 @@ struct ResampleStats {
   size_t vertices = 0, faces = 0, regular_faces = 0, lattice_vertices = 0;
   size_t heights_moved = 0, height_moves_reverted = 0;  // least-squares heights (height_fitting.h)
   size_t deviation_inserts = 0, deviation_refused = 0;    // local refinement (deviation_refinement.h)
+  size_t deviation_moves = 0;                             // its rim moves (irregular vertices moved, none inserted)
   // Quantization (quantized_separation.h): faces that lost their area and vertices that shared a position when
   // rounded to the frame, the vertices moved so that none does, and what is left (faces and vertices).
   size_t quantized_degenerate = 0, quantized_rounding_turned = 0, quantized_coincident = 0, quantized_moves = 0,
