@@ -27,7 +27,7 @@ void add_pack_command(CLI::App& root) {
     double target = 0, max_error = 0, grid = 0, grid_fraction = 0, tau = 0.2, lambda = 0, step_scale = 0;
     double boundary_simplification = pipeline::PackOptions{}.boundary_simplification;
     int bits = 0, sweeps = 4, effort = pipeline::kDefaultEffort;
-    std::string max_version = "1.5", mode = "auto";
+    std::string max_version = "1.5", mode = "auto", adaptive_model = "measured";
     size_t samples = 0, target_bytes = 0;
     bool json = false, no_fit = false, round_heights = false, fallback = false, fill_holes = false, refine = false,
          adaptive = false;
@@ -107,11 +107,17 @@ void add_pack_command(CLI::App& root) {
                     " x --target-error from the input (thin tips the grid cuts off; bench/README.md 'Worst-case "
                     "error': max halved on the horse, +3% bytes, but +14% bytes for nothing on CGAL's bunny00)");
   cmd->add_flag("--adaptive", opt->adaptive,
-                "A grid size per relief (format 1.5, spec §8.4.2): each relief's grid scaled by its measured curvature "
-                "(equal slope, remesh/relief_grids.h), the search scaling them together to the target; ignored with "
+                "A grid size per relief (format 1.5, spec §8.4.2): each relief's grid chosen by equal slope (the same "
+                "marginal bytes per unit of squared error in every relief) from its error measured on two uniform "
+                "remeshes (--adaptive-model), the search scaling them together to the target; ignored with "
                 "--max-version below 1.5");
+  cmd->add_option("--adaptive-model", opt->adaptive_model,
+                  "With --adaptive: measured (default: each relief's squared error on two uniform remeshes, at the "
+                  "search's first grid and 1.41 times it, fitted to error ~ g^p) or curvature (predicted from the "
+                  "input's mean squared curvature, --adaptive-exponent; no extra remesh)")
+      ->check(CLI::IsMember({"measured", "curvature"}));
   cmd->add_option("--adaptive-exponent", opt->adaptive_exponent,
-                  "With --adaptive: a relief's grid goes as its mean squared curvature to the minus this power (default "
+                  "With --adaptive-model curvature: a relief's grid goes as its mean squared curvature to the minus this power (default "
                   "1/6: RMS error ~ g^2, bytes ~ g^-2)")
       ->check(CLI::Range(0.01, 1.0));
   cmd->add_flag("--round-heights", opt->round_heights,
@@ -158,6 +164,8 @@ void add_pack_command(CLI::App& root) {
     po.optimize_heights = !opt->round_heights;
     po.adaptive = opt->adaptive;
     po.adaptive_exponent = opt->adaptive_exponent;
+    po.adaptive_model = opt->adaptive_model == "curvature" ? pipeline::PackOptions::AdaptiveModel::curvature
+                                                           : pipeline::PackOptions::AdaptiveModel::measured;
     po.height_sweeps = opt->sweeps;
     po.max_minor = opt->max_version[2] - '0';
     po.effort = opt->effort;
@@ -304,6 +312,7 @@ void add_pack_command(CLI::App& root) {
         j["grid_steps"] = r.remesh.prm.lattice.A;
         j["grid_sizes"] = rep.grid_sizes;  // §8.4.2: 1, or 2..8 with --adaptive
         j["adaptive"] = opt->adaptive;
+        if (opt->adaptive) j["adaptive_model"] = opt->adaptive_model;
         j["tau"] = opt->tau;
         j["step"] = r.remesh.prm.frame.step;
         j["remesh_rounds"] = r.remesh_rounds;
