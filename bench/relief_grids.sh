@@ -5,9 +5,14 @@
 # mode, printed and appended to relief_grids.txt in the current folder).
 set -u
 P=$1; target=$2; shift 2
+# MODES (default "uniform adaptive"): uniform (one grid), adaptive (--adaptive, its default model), measured and
+# curvature (--adaptive --adaptive-model measured|curvature); EXTRA: more pack arguments for every run.
 for mesh in "$@"; do
-  for mode in uniform adaptive; do
-    extra=(); [ $mode = adaptive ] && extra=(--adaptive)
+  for mode in ${MODES:-uniform adaptive}; do
+    extra=(${EXTRA:-})
+    [ $mode = adaptive ] && extra+=(--adaptive)
+    [ $mode = measured ] && extra+=(--adaptive --adaptive-model measured)
+    [ $mode = curvature ] && extra+=(--adaptive --adaptive-model curvature)
     tag=$(basename "${mesh%.*}")_${mode}_$target
     /usr/bin/time -f '%U %S %M' nice -n 10 "$P" pack "$mesh" --target-error "$target" "${extra[@]}" -o "$tag.prm" \
       --json > "$tag.json" 2> "$tag.time"

@@ -1,13 +1,14 @@
 #!/usr/bin/env python3
 # Issue 23: bytes at equal RMS, one grid against a grid per relief. Around the grid that `prm pack MESH
 # --target-error TARGET --json` chose (UNIFORM_JSON, its output), pack at four fixed grids (0.92 to 1.17 times it,
-# the same bits, step scale and height lambda) with one grid ('u') and with --adaptive at each exponent ('aX'), then
+# the same bits, step scale and height lambda) with one grid ('u'), with --adaptive's curvature model at each
+# exponent ('aX') and with its measured model ('m', --adaptive-model measured), then
 # interpolate log(bytes) against log(RMS) between the two points around TARGET.
-# Usage: PRM_BIN=build/tools/prm/prm bench/relief_grids_sweep.py NAME MESH TARGET UNIFORM_JSON [u a0.1667 ...]
+# Usage: PRM_BIN=build/tools/prm/prm bench/relief_grids_sweep.py NAME MESH TARGET UNIFORM_JSON [u m a0.1667 ...]
 import json, subprocess, sys, math, os
 P = os.environ.get('PRM_BIN', 'build/tools/prm/prm')
 name, mesh, target = sys.argv[1], sys.argv[2], float(sys.argv[3])
-variants = sys.argv[5:] if len(sys.argv) > 5 else ['u', 'a0.1667', 'a0.25']
+variants = sys.argv[5:] if len(sys.argv) > 5 else ['u', 'm', 'a0.1667']
 u = json.load(open(sys.argv[4]))
 G, S, B, L = u['grid_size'], u['step_scale'], u['bits'], u.get('height_lambda', 0)
 factors = [0.92, 1.0, 1.08, 1.17]
@@ -18,7 +19,9 @@ for v in variants:
         cmd = ['/usr/bin/time', '-f', '%U %S', 'nice', '-n', '10', P, 'pack', mesh, '--grid', repr(G * f), '--bits', str(B),
                '--step-scale', repr(S), '--height-lambda', repr(L), '--json', '-o', f'sweep_{name}.prm']
         if v.startswith('a'):
-            cmd += ['--adaptive', '--adaptive-exponent', v[1:]]
+            cmd += ['--adaptive', '--adaptive-model', 'curvature', '--adaptive-exponent', v[1:]]
+        if v == 'm':
+            cmd += ['--adaptive', '--adaptive-model', 'measured']
         r = subprocess.run(cmd, capture_output=True, text=True)
         try:
             j = json.loads(r.stdout)

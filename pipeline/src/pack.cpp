@@ -403,7 +403,31 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
   if (options.adaptive && options.max_minor >= codec::kFormatMinorPatchGrids) {
     remesh::ReliefGridOptions go;
     go.exponent = options.adaptive_exponent;
-    relief_grid_scale = remesh::allocate_relief_grid_scales(remesh::measure_relief_detail(source, layout), go);
+    if (options.adaptive_model == PackOptions::AdaptiveModel::curvature) {
+      relief_grid_scale = remesh::allocate_relief_grid_scales(remesh::measure_relief_detail(source, layout), go);
+    } else {
+      ProgressJob::stage("allocation");
+      // Two uniform remeshes (no error search): the search's first grid (or the grid given) and a coarser one.
+      const AabbTree& tree = thinned_tree ? *thinned_tree : reference.tree();
+      const double first = options.grid_size > 0       ? options.grid_size
+                           : options.grid_fraction > 0 ? options.grid_fraction * reference.diagonal()
+                                                       : kGridPerTargetError * predicted_error * reference.diagonal();
+      auto sample = [&](double grid) {
+        remesh::RemeshOptions ro;
+        ro.layout = &layout;
+        ro.input_tree = &tree;
+        ro.reliefs.tau = options.tau;
+        ro.reliefs.parallel = options.parallel;
+        ro.parallel = options.parallel;
+        ro.fit_heights = options.fit_heights;
+        ro.error_flip_weight = options.error_flip_weight;
+        ro.grid_size = grid;
+        const remesh::RemeshResult r = remesh::remesh(source, ro);
+        return remesh::measure_relief_error(r.prm, tree, layout.reliefs.size(), grid);
+      };
+      relief_grid_scale = remesh::allocate_relief_grid_scales_measured(
+          sample(first), sample(first * kAdaptiveModelGridRatio), go);
+    }
   }
   const SearchContext ctx{source, layout, sparse ? *sparse_reference : reference, reference, plan,
                           thinned_tree.get(), relief_grid_scale};

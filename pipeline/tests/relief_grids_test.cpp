@@ -11,6 +11,7 @@
 #include <set>
 #include <string>
 
+#include "prm/aabb_tree.h"
 #include "prm/mesh_io.h"
 #include "prm/mesh_repair.h"
 #include "prm/mesh_validate.h"
@@ -150,6 +151,73 @@ TEST(ReliefGrids, AllocationFollowsTheDetail) {
       if (detail.curvature2[r] > detail.curvature2[q]) {
         EXPECT_LE(scale[r], scale[q]) << r << " " << q;
       }
+  }
+}
+
+// The measured model's equal slope on known samples: two reliefs of equal area and exponent 2 (the squared error
+// doubles when the grid grows by sqrt 2), the second with 2^8 times the squared error: g^(p+2) ~ 1 / msq gives the
+// second a grid 2^(8/4) = 4 times finer, that is scales 2 and 1/2 around their geometric mean (levels +4 and -4,
+// clamped to -3: 2^(-3/4)). A third relief with no samples keeps 1; a relief whose error falls with the grid gets
+// the smallest exponent (kMinErrorExponent) rather than a negative one.
+TEST(ReliefGrids, MeasuredAllocationIsEqualSlope) {
+  remesh::ReliefErrorSample a, b;
+  a.grid = 1;
+  b.grid = std::sqrt(2.0);
+  a.area = b.area = {1, 1, 0};
+  a.msq = {1e-6, 256e-6, 0};
+  b.msq = {2e-6, 512e-6, 0};
+  std::vector<double> scale = remesh::allocate_relief_grid_scales_measured(a, b);
+  ASSERT_EQ(scale.size(), 3u);
+  EXPECT_DOUBLE_EQ(scale[0], 2.0);
+  EXPECT_DOUBLE_EQ(scale[1], std::exp2(-0.75));
+  EXPECT_DOUBLE_EQ(scale[2], 1.0);
+  // A coarser grid of lower error: p clamped to 1, so g^3 ~ 1 / msq.
+  b.msq = {0.5e-6, 512e-6, 0};
+  scale = remesh::allocate_relief_grid_scales_measured(a, b);
+  EXPECT_GT(scale[0], scale[1]);
+  EXPECT_THROW(remesh::allocate_relief_grid_scales_measured(b, a), std::invalid_argument);
+}
+
+// The measured model on a real mesh: one uniform remesh of feline_5k at two grid sizes; the reliefs' sampled areas
+// cover most of the remeshed surface, the squared error grows with the grid on most reliefs, and the scales are
+// levels of 2^(k/4) with the finer grid for the relief of the larger error where the exponents agree.
+TEST(ReliefGrids, MeasuredModelOnARealMesh) {
+  const Mesh input = load_closed(std::string(PRM_SHARED_MESHES) + "/feline_5k.obj");
+  const remesh::ReliefLayout layout = remesh::build_reliefs(input, {});
+  const AabbTree tree(input);
+  auto sample = [&](double fraction) {
+    remesh::RemeshOptions ro;
+    ro.layout = &layout;
+    ro.input_tree = &tree;
+    ro.grid_fraction = fraction;
+    const remesh::RemeshResult r = remesh::remesh(input, ro);
+    double surface = 0;
+    for (const Tri& t : r.prm.mesh.triangles)
+      surface += triangle_area(r.prm.mesh.positions[t[0]], r.prm.mesh.positions[t[1]], r.prm.mesh.positions[t[2]]);
+    remesh::ReliefErrorSample s = remesh::measure_relief_error(r.prm, tree, layout.reliefs.size(),
+                                                               fraction * validate_mesh(input).diagonal);
+    double sampled = 0;
+    for (double a : s.area) sampled += a;
+    EXPECT_GT(sampled, 0.8 * surface) << fraction;
+    EXPECT_LE(sampled, surface * (1 + 1e-9)) << fraction;
+    return s;
+  };
+  const remesh::ReliefErrorSample a = sample(0.01), b = sample(0.02);
+  size_t grows = 0, measured = 0;
+  for (size_t r = 0; r < a.msq.size(); ++r) {
+    if (!(a.msq[r] > 0) || !(b.msq[r] > 0)) continue;
+    ++measured;
+    grows += b.msq[r] > a.msq[r];
+  }
+  EXPECT_GE(measured, a.msq.size() / 2);
+  EXPECT_GE(grows, measured * 3 / 4) << "of " << measured;
+  const std::vector<double> scale = remesh::allocate_relief_grid_scales_measured(a, b);
+  std::set<double> levels(scale.begin(), scale.end());
+  EXPECT_GE(levels.size(), 2u);
+  EXPECT_LE(levels.size(), remesh::kMaxReliefGrids);
+  for (double s : scale) {
+    const double k = std::log2(s) * 4;
+    EXPECT_NEAR(k, std::round(k), 1e-9);
   }
 }
 

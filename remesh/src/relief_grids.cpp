@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include <tbb/parallel_for.h>
+
 #include "prm/remesh/resample.h"
 #include "prm/vec3.h"
 
@@ -57,10 +59,25 @@ ReliefDetail measure_relief_detail(const Mesh& input, const ReliefLayout& layout
   return out;
 }
 
-std::vector<double> allocate_relief_grid_scales(const ReliefDetail& detail, const ReliefGridOptions& options) {
+namespace {
+
+void check_levels(const ReliefGridOptions& options) {
   if (options.coarsest_level - options.finest_level + 1 > static_cast<int>(kMaxReliefGrids) ||
       options.finest_level > 0 || options.coarsest_level < 0 || options.levels_per_octave < 1 || !(options.exponent > 0))
     throw std::invalid_argument("relief grid levels: at most " + std::to_string(kMaxReliefGrids) + ", around 0");
+}
+
+// A scale rounded to 2^(k / levels_per_octave), k within the options' levels.
+double round_to_level(double s, const ReliefGridOptions& options) {
+  const int k = std::clamp(static_cast<int>(std::lround(std::log2(s) * options.levels_per_octave)),
+                           options.finest_level, options.coarsest_level);
+  return std::exp2(static_cast<double>(k) / options.levels_per_octave);
+}
+
+}  // namespace
+
+std::vector<double> allocate_relief_grid_scales(const ReliefDetail& detail, const ReliefGridOptions& options) {
+  check_levels(options);
   const size_t n = detail.curvature2.size();
   double top = 0, total = 0, log_sum = 0;
   for (double c : detail.curvature2) top = std::max(top, c);
@@ -74,10 +91,76 @@ std::vector<double> allocate_relief_grid_scales(const ReliefDetail& detail, cons
   std::vector<double> scale(n, 1.0);
   for (size_t r = 0; r < n; ++r) {
     const double s = std::pow(std::max(detail.curvature2[r], floor) / reference, -options.exponent);
-    const int k = std::clamp(static_cast<int>(std::lround(std::log2(s) * options.levels_per_octave)),
-                             options.finest_level, options.coarsest_level);
-    scale[r] = std::exp2(static_cast<double>(k) / options.levels_per_octave);
+    scale[r] = round_to_level(s, options);
   }
+  return scale;
+}
+
+ReliefErrorSample measure_relief_error(const PrmMesh& prm, const AabbTree& input_tree, size_t reliefs, double grid) {
+  const Mesh& m = prm.mesh;
+  const size_t nf = m.triangles.size();
+  std::vector<double> face_area(nf, 0.0), face_sum(nf, 0.0);
+  std::vector<int32_t> face_relief(nf, -1);
+  // Barycentric weights of the seven points.
+  static constexpr double kPoints[7][3] = {{1 / 3.0, 1 / 3.0, 1 / 3.0}, {0.5, 0.5, 0}, {0, 0.5, 0.5}, {0.5, 0, 0.5},
+                                           {2 / 3.0, 1 / 6.0, 1 / 6.0}, {1 / 6.0, 2 / 3.0, 1 / 6.0},
+                                           {1 / 6.0, 1 / 6.0, 2 / 3.0}};
+  tbb::parallel_for(size_t{0}, nf, [&](size_t f) {
+    const Tri& t = m.triangles[f];
+    for (int c = 0; c < 3 && face_relief[f] < 0; ++c)
+      if (t[c] < prm.vertex_relief.size() && prm.vertex_relief[t[c]] >= 0 &&
+          static_cast<size_t>(prm.vertex_relief[t[c]]) < reliefs)
+        face_relief[f] = prm.vertex_relief[t[c]];
+    if (face_relief[f] < 0) return;
+    const Vec3 &a = m.positions[t[0]], &b = m.positions[t[1]], &c = m.positions[t[2]];
+    face_area[f] = triangle_area(a, b, c);
+    AabbTree::Hit hint = input_tree.closest(a);
+    for (const auto& w : kPoints) {
+      input_tree.closest(a * w[0] + b * w[1] + c * w[2], hint);
+      face_sum[f] += hint.distance2;
+    }
+  });
+  ReliefErrorSample out;
+  out.grid = grid;
+  out.area.assign(reliefs, 0.0);
+  out.msq.assign(reliefs, 0.0);
+  for (size_t f = 0; f < nf; ++f) {
+    if (face_relief[f] < 0) continue;
+    const size_t r = static_cast<size_t>(face_relief[f]);
+    out.area[r] += face_area[f];
+    out.msq[r] += face_area[f] * face_sum[f] / 7.0;
+  }
+  for (size_t r = 0; r < reliefs; ++r)
+    if (out.area[r] > 0) out.msq[r] /= out.area[r];
+  return out;
+}
+
+std::vector<double> allocate_relief_grid_scales_measured(const ReliefErrorSample& a, const ReliefErrorSample& b,
+                                                         const ReliefGridOptions& options) {
+  check_levels(options);
+  if (!(a.grid > 0) || !(b.grid > a.grid) || a.msq.size() != b.msq.size() || a.area.size() != a.msq.size())
+    throw std::invalid_argument("relief error samples: two grids, the second coarser, of the same reliefs");
+  const size_t n = a.msq.size();
+  // log(p_r msq_r(g_a)) / (p_r + 2) and 1 / (p_r + 2), for the reliefs measured in both.
+  std::vector<double> log_m(n, 0.0), inv(n, 0.0);
+  std::vector<bool> known(n, false);
+  double weight = 0, weighted = 0;
+  const double log_ratio = std::log(b.grid / a.grid);
+  for (size_t r = 0; r < n; ++r) {
+    if (!(a.area[r] > 0) || !(b.area[r] > 0) || !(a.msq[r] > 0) || !(b.msq[r] > 0)) continue;
+    const double p =
+        std::clamp(std::log(b.msq[r] / a.msq[r]) / log_ratio, kMinErrorExponent, kMaxErrorExponent);
+    known[r] = true;
+    inv[r] = 1.0 / (p + 2);
+    log_m[r] = std::log(p * a.msq[r]);
+    weight += a.area[r] * inv[r];
+    weighted += a.area[r] * inv[r] * log_m[r];
+  }
+  std::vector<double> scale(n, 1.0);
+  if (!(weight > 0)) return scale;
+  const double log_q = weighted / weight;  // the area-weighted mean of log s_r is then 0
+  for (size_t r = 0; r < n; ++r)
+    if (known[r]) scale[r] = round_to_level(std::exp((log_q - log_m[r]) * inv[r]), options);
   return scale;
 }
 

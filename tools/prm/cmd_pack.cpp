@@ -1,4 +1,4 @@
-// prm pack IN -o OUT.prm (--target-error E | --grid G | --grid-fraction F) [--mode prm|general|auto] [--tau T]
+// prm pack IN -o OUT.prm (--target-error E | --target-bytes N | --grid G | --grid-fraction F) [--mode prm|general|auto] [--tau T]
 // [--bits B] [--fill-holes] [--json]: the main job. Fix what repair can fix (boundary loops stay open unless
 // --fill-holes), remesh into a piecewise regular mesh (paper §2), encode it (spec/prm-format.md); with --mode auto
 // also code the input itself through the general path and keep the smaller stream; report which, sizes, error and
@@ -15,6 +15,7 @@
 #include "prm/error.h"
 #include "prm/mesh_io.h"
 #include "prm/pipeline/pack.h"
+#include "prm/pipeline/pack_to_bytes.h"
 
 namespace prm::cli {
 
@@ -26,8 +27,8 @@ void add_pack_command(CLI::App& root) {
     double target = 0, max_error = 0, grid = 0, grid_fraction = 0, tau = 0.2, lambda = 0, step_scale = 0;
     double boundary_simplification = pipeline::PackOptions{}.boundary_simplification;
     int bits = 0, sweeps = 4, effort = pipeline::kDefaultEffort;
-    std::string max_version = "1.5", mode = "auto";
-    size_t samples = 0;
+    std::string max_version = "1.5", mode = "auto", adaptive_model = "measured";
+    size_t samples = 0, target_bytes = 0;
     bool json = false, no_fit = false, round_heights = false, fallback = false, fill_holes = false, refine = false,
          adaptive = false;
     double adaptive_exponent = 1.0 / 6.0;
@@ -52,6 +53,14 @@ void add_pack_command(CLI::App& root) {
                              "where the mesh strays more than " + std::to_string(pipeline::kRefineShare).substr(0, 3) +
                                  " x this from the input (bench/README.md 'Worst-case error'). Default: none")
                  ->check(CLI::Range(1e-7, 0.1));
+  auto* tb = cmd->add_option("--target-bytes", opt->target_bytes,
+                             "A byte budget instead of --target-error: the stream of the lowest RMS error whose size is at "
+                             "most this many bytes (the target error is searched over a ladder of " +
+                                 std::to_string(pipeline::kBytesLadderSteps) +
+                                 " steps an octave, one whole pack per step tried, about 4-8 packs). Exit 3 when even "
+                                 "the coarsest stream is larger. Alone or with --adaptive, --max-error, --mode, --effort")
+                 ->check(CLI::PositiveNumber);
+  tb->excludes(te)->excludes(g)->excludes(gf);
   te->excludes(g)->excludes(gf);
   me->excludes(g)->excludes(gf);
   g->excludes(gf);
@@ -101,11 +110,17 @@ void add_pack_command(CLI::App& root) {
                     "error': the horse's max from 25x to 9.9x the target for +4.2% bytes; +5.7% for nothing on "
                     "CGAL's bunny00)");
   cmd->add_flag("--adaptive", opt->adaptive,
-                "A grid size per relief (format 1.5, spec §8.4.2): each relief's grid scaled by its measured curvature "
-                "(equal slope, remesh/relief_grids.h), the search scaling them together to the target; ignored with "
+                "A grid size per relief (format 1.5, spec §8.4.2): each relief's grid chosen by equal slope (the same "
+                "marginal bytes per unit of squared error in every relief) from its error measured on two uniform "
+                "remeshes (--adaptive-model), the search scaling them together to the target; ignored with "
                 "--max-version below 1.5");
+  cmd->add_option("--adaptive-model", opt->adaptive_model,
+                  "With --adaptive: measured (default: each relief's squared error on two uniform remeshes, at the "
+                  "search's first grid and 1.41 times it, fitted to error ~ g^p) or curvature (predicted from the "
+                  "input's mean squared curvature, --adaptive-exponent; no extra remesh)")
+      ->check(CLI::IsMember({"measured", "curvature"}));
   cmd->add_option("--adaptive-exponent", opt->adaptive_exponent,
-                  "With --adaptive: a relief's grid goes as its mean squared curvature to the minus this power (default "
+                  "With --adaptive-model curvature: a relief's grid goes as its mean squared curvature to the minus this power (default "
                   "1/6: RMS error ~ g^2, bytes ~ g^-2)")
       ->check(CLI::Range(0.01, 1.0));
   cmd->add_flag("--round-heights", opt->round_heights,
@@ -130,8 +145,11 @@ void add_pack_command(CLI::App& root) {
   cmd->callback([opt] {
     if (is_prm_stream_path(opt->input) && is_gltf_file_path(opt->output))
       return wrap_prm_stream(opt->input, opt->output, opt->fallback, opt->json);
-    if (opt->grid <= 0 && opt->grid_fraction <= 0 && opt->target <= 0 && opt->max_error <= 0)
-      throw CLI::ValidationError("pack", "give one of --target-error (and/or --max-error), --grid or --grid-fraction");
+    if (opt->grid <= 0 && opt->grid_fraction <= 0 && opt->target <= 0 && opt->max_error <= 0 && opt->target_bytes == 0)
+      throw CLI::ValidationError("pack", "give one of --target-error (and/or --max-error), --target-bytes, --grid or "
+                                         "--grid-fraction");
+    if (opt->target_bytes > 0 && is_gltf_file_path(opt->output))
+      throw CLI::ValidationError("pack", "--target-bytes writes a .prm stream (not a glTF asset)");
     check_pack_output(opt->output, opt->fallback);
     pipeline::PackOptions po;
     po.target_error = opt->target;
@@ -149,13 +167,16 @@ void add_pack_command(CLI::App& root) {
     po.optimize_heights = !opt->round_heights;
     po.adaptive = opt->adaptive;
     po.adaptive_exponent = opt->adaptive_exponent;
+    po.adaptive_model = opt->adaptive_model == "curvature" ? pipeline::PackOptions::AdaptiveModel::curvature
+                                                           : pipeline::PackOptions::AdaptiveModel::measured;
     po.height_sweeps = opt->sweeps;
     po.max_minor = opt->max_version[2] - '0';
     po.effort = opt->effort;
     po.mode = opt->mode == "prm" ? pipeline::PackMode::prm
               : opt->mode == "general" ? pipeline::PackMode::general : pipeline::PackMode::automatic;
-    if (po.mode == pipeline::PackMode::general && opt->target <= 0 && opt->max_error <= 0 && opt->bits <= 0)
-      throw CLI::ValidationError("pack", "--mode general needs --target-error, --max-error or --bits");
+    if (po.mode == pipeline::PackMode::general && opt->target <= 0 && opt->max_error <= 0 && opt->bits <= 0 &&
+        opt->target_bytes == 0)
+      throw CLI::ValidationError("pack", "--mode general needs --target-error, --target-bytes, --max-error or --bits");
     if (po.mode == pipeline::PackMode::general && opt->fill_holes)
       throw CLI::ValidationError("pack", "--fill-holes closes the input's holes, which --mode general keeps");
     po.fill_holes = opt->fill_holes;
@@ -165,8 +186,16 @@ void add_pack_command(CLI::App& root) {
     ReadReport read;
     const Mesh input = read_mesh(opt->input, {}, &read);
     pipeline::PackResult r;
+    pipeline::PackToBytesResult budgeted;  // --target-bytes: the search (r is its stream)
     try {
-      r = pipeline::pack(input, po);
+      if (opt->target_bytes > 0) {
+        budgeted = pipeline::pack_to_bytes(input, opt->target_bytes, po);
+        r = std::move(budgeted.result);
+      } else {
+        r = pipeline::pack(input, po);
+      }
+    } catch (const pipeline::BudgetTooSmall& e) {
+      throw Failure(opt->input + ": --target-bytes " + std::to_string(opt->target_bytes) + ": " + e.what());
     } catch (const remesh::TargetNotReached& e) {
       throw Failure(opt->input + ": " + e.what());
     } catch (const InputError& e) {
@@ -209,7 +238,11 @@ void add_pack_command(CLI::App& root) {
     const double g = static_cast<double>(r.remesh.prm.lattice.A) * r.remesh.prm.frame.step;
     const size_t geometry = rep.total_bytes - rep.header_bytes - rep.framing_bytes - rep.connectivity_bytes -
                             rep.irregular_bytes;
-    const double seconds = r.seconds_repair + r.seconds_remesh + r.seconds_encode + r.seconds_general;
+    double seconds = r.seconds_repair + r.seconds_remesh + r.seconds_encode + r.seconds_general;
+    if (opt->target_bytes > 0) {  // every pack of the search
+      seconds = 0;
+      for (const pipeline::BytesSearchStep& st : budgeted.steps) seconds += st.seconds;
+    }
     if (opt->json) {
       nlohmann::json search = nlohmann::json::array();  // the chosen step's grid search
       for (const auto& st : r.remesh.search) search.push_back({{"grid_steps", st.grid}, {"rms", st.error.rms}});
@@ -263,11 +296,28 @@ void add_pack_command(CLI::App& root) {
       j["tried"] = tried;
       j["effort"] = opt->effort;
       j["max_error"] = opt->max_error;
+      if (opt->target_bytes > 0) {
+        nlohmann::json steps = nlohmann::json::array();
+        for (const pipeline::BytesSearchStep& st : budgeted.steps) {
+          nlohmann::json js = {{"target_error", st.target_error}, {"made", st.made}, {"seconds", st.seconds}};
+          if (st.made) {
+            js["bytes"] = st.bytes;
+            js["rms_rel"] = st.rms;
+            js["max_rel"] = st.max;
+          }
+          steps.push_back(js);
+        }
+        j["target_bytes"] = opt->target_bytes;
+        j["target_error"] = budgeted.target_error;
+        j["bytes_search"] = steps;
+        j["bytes_search_finest"] = budgeted.finest;
+      }
       if (!general) {
         j["grid_size"] = g;
         j["grid_steps"] = r.remesh.prm.lattice.A;
         j["grid_sizes"] = rep.grid_sizes;  // §8.4.2: 1, or 2..8 with --adaptive
         j["adaptive"] = opt->adaptive;
+        if (opt->adaptive) j["adaptive_model"] = opt->adaptive_model;
         j["tau"] = opt->tau;
         j["step"] = r.remesh.prm.frame.step;
         j["remesh_rounds"] = r.remesh_rounds;
@@ -284,6 +334,17 @@ void add_pack_command(CLI::App& root) {
       std::printf("%s -> %s: %zu bytes, %.3f bits per vertex\n", opt->input.c_str(), opt->output.c_str(),
                   rep.total_bytes, 8.0 * rep.total_bytes / n_r);
       std::printf("  mode: %s (%s)\n", pipeline::pack_mode_name(r.mode), r.mode_reason.c_str());
+      if (opt->target_bytes > 0) {
+        std::printf("  target bytes %zu: kept the stream packed at target error %.4g (%zu packs, %.1f s:", opt->target_bytes,
+                    budgeted.target_error, budgeted.steps.size(), seconds);
+        for (const pipeline::BytesSearchStep& st : budgeted.steps) {
+          if (st.made)
+            std::printf(" %.3g: %zu B", st.target_error, st.bytes);
+          else
+            std::printf(" %.3g: not made", st.target_error);
+        }
+        std::printf(")%s\n", budgeted.finest ? "; the budget holds even the finest target error tried" : "");
+      }
       for (const std::string& c : changes) std::printf("  changed: %s\n", c.c_str());
       for (const std::string& n : notes) std::printf("  note: %s\n", n.c_str());
       if (general)

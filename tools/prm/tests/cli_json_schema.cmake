@@ -67,6 +67,22 @@ string(JSON made GET "${last_json}" candidates prm made)
 if(made)
   message(FATAL_ERROR "prm pack --mode general made a piecewise regular candidate:\n${last_json}")
 endif()
+# --target-bytes (issue 23): the stream fits the budget and the report names the search; a budget below every stream
+# is exit 3 with the error object (the general path alone, so that this is a few milliseconds).
+run_json(pack KEYS target_bytes target_error bytes_search bytes_search_finest bytes.total distance.rms_rel
+         ARGS pack "${DATA}/cube_quads.obj" -o "${WORK}/cube_bytes.prm" --target-bytes 200 --mode general)
+string(JSON total GET "${last_json}" bytes total)
+file(SIZE "${WORK}/cube_bytes.prm" written)
+if(total GREATER 200 OR NOT written EQUAL total)
+  message(FATAL_ERROR "prm pack --target-bytes 200: ${total} bytes reported, ${written} written:\n${last_json}")
+endif()
+execute_process(COMMAND "${PRM}" pack "${DATA}/cube_quads.obj" -o "${WORK}/cube_bytes_small.prm" --target-bytes 50
+                        --mode general --json RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+string(REGEX MATCH "[^\n]+\n?$" last_line "${err}")
+string(JSON code ERROR_VARIABLE jerr GET "${last_line}" error code)
+if(NOT rc EQUAL 3 OR jerr OR NOT code EQUAL 3 OR NOT err MATCHES "no stream fits 50 bytes")
+  message(FATAL_ERROR "prm pack --target-bytes 50 (below every stream): exit ${rc}, expected 3 with the error object:\n${err}")
+endif()
 # remesh keeps an open input's boundary loops (issue 22), and closes them with --fill-holes.
 run_json(remesh KEYS boundary_loops_in boundary_loops_out holes_closed
          ARGS remesh "${DATA}/open_box.off" -o "${WORK}/open_box_prm.ply" --grid-fraction 0.1)

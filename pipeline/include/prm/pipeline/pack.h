@@ -106,8 +106,17 @@ struct PackOptions {
   // its measured detail (equal slope), the search scaling them together to the target. Needs max_minor >= 5
   // (otherwise ignored: one grid). false: one grid for the whole surface.
   bool adaptive = false;
-  double adaptive_exponent = 1.0 / 6.0;  // remesh::ReliefGridOptions::exponent
+  // How the adaptive allocation models each relief: measured (the default): its squared error on two uniform
+  // remeshes at the search's first grid and kAdaptiveModelGridRatio times it (remesh::measure_relief_error, equal
+  // slope in remesh::allocate_relief_grid_scales_measured); curvature: predicted from the input's curvature
+  // (remesh::measure_relief_detail, adaptive_exponent).
+  enum class AdaptiveModel { measured, curvature };
+  AdaptiveModel adaptive_model = AdaptiveModel::measured;
+  double adaptive_exponent = 1.0 / 6.0;  // remesh::ReliefGridOptions::exponent (the curvature model)
 };
+
+// The measured adaptive model's two grids: the search's first grid and this many times it.
+constexpr double kAdaptiveModelGridRatio = 1.4142135623730951;
 
 // What one effort level does (effort_plan()).
 struct EffortPlan {

@@ -7,8 +7,10 @@
 
 #include <vector>
 
+#include "prm/aabb_tree.h"
 #include "prm/mesh.h"
 #include "prm/remesh/reliefs.h"
+#include "prm/remesh/resample.h"
 
 namespace prm::remesh {
 
@@ -32,5 +34,27 @@ struct ReliefGridOptions {
 };
 // Per relief id: its grid scale, relative to the area-weighted geometric mean detail (scale 1).
 std::vector<double> allocate_relief_grid_scales(const ReliefDetail& detail, const ReliefGridOptions& options = {});
+
+// The measured model (pack --adaptive's default): the error of each relief measured on a remeshed surface at two
+// grid sizes instead of predicted from the curvature. One remesh (one grid for every relief) gives, per relief, the
+// area of its faces and the mean squared distance of points on them to the input (seven points a face: the centroid,
+// the edge midpoints and the points halfway between the centroid and the corners; a face belongs to the relief of
+// its first grid vertex, faces without one are left out).
+struct ReliefErrorSample {
+  double grid = 0;  // model units
+  std::vector<double> area, msq;  // per relief id; msq in model units squared
+};
+ReliefErrorSample measure_relief_error(const PrmMesh& prm, const AabbTree& input_tree, size_t reliefs, double grid);
+
+// Equal slope from two samples a (grid g_a) and b (g_b > g_a): per relief, msq_r(g) = msq_r(g_a) (g / g_a)^p_r with
+// p_r fitted to the two (clamped to [kMinErrorExponent, kMaxErrorExponent]), and its bytes area_r / g^2 times one
+// cost per lattice vertex for every relief. Minimising the bytes for a total squared error (sum of area_r msq_r)
+// makes every relief's marginal bytes per unit of squared error equal: g_r^(p_r + 2) proportional to
+// 1 / (p_r msq_r(g_a) g_a^-p_r). Scales relative to their area-weighted geometric mean, rounded as options says
+// (options.exponent is not used). A relief with no samples in either keeps scale 1.
+constexpr double kMinErrorExponent = 1.0;
+constexpr double kMaxErrorExponent = 6.0;
+std::vector<double> allocate_relief_grid_scales_measured(const ReliefErrorSample& a, const ReliefErrorSample& b,
+                                                         const ReliefGridOptions& options = {});
 
 }  // namespace prm::remesh
