@@ -11,16 +11,42 @@ namespace prm::codec {
 static_assert(kLpGroups == 7 && kLpActivities == 9 && kLpSignContexts == 6, "residual_context() is out of date");
 
 ResidualCosts ResidualCosts::of(const LpModels& models) {
+  // Each entry is signed_cost_bits(models.residual[g][a], r, sign), summed here in the same order from the cost of
+  // each decision, computed once per model rather than once per entry (the table is the same to the last bit;
+  // 7 * 9 * 6 contexts of 129 entries made this the encoder's largest cost on small meshes).
+  constexpr int kTopClass = 6;  // int_class(kCostRange)
+  static_assert(kCostRange >> kTopClass == 1, "kTopClass is the class of kCostRange");
   ResidualCosts c;
   c.table.resize(kResidualContexts);
   for (int g = 0; g < kLpGroups; ++g)
-    for (int a = 0; a < kLpActivities; ++a)
-      for (int s = 0; s < kLpSignContexts; ++s) {
-        const BitModel& sign = models.sign_context ? models.sign[g][s] : models.residual[g][a].sign;
-        for (int r = -kCostRange; r <= kCostRange; ++r)
-          c.table[static_cast<size_t>(residual_context(g, a, s))][static_cast<size_t>(r + kCostRange)] =
-              signed_cost_bits(models.residual[g][a], r, sign);
+    for (int a = 0; a < kLpActivities; ++a) {
+      const SignedIntModel& m = models.residual[g][a];
+      double cls_one[kTopClass + 1], cls_zero[kTopClass + 1], mant[kTopClass + 1][2];
+      for (int e = 0; e <= kTopClass; ++e) {
+        cls_one[e] = bit_cost(m.cls[e], 1);
+        cls_zero[e] = bit_cost(m.cls[e], 0);
+        mant[e][0] = bit_cost(m.mant[e], 0);
+        mant[e][1] = bit_cost(m.mant[e], 1);
       }
+      const double zero = bit_cost(m.zero, 1), nonzero = bit_cost(m.zero, 0);
+      for (int s = 0; s < kLpSignContexts; ++s) {
+        const BitModel& sign = models.sign_context ? models.sign[g][s] : m.sign;
+        const double sign_cost[2] = {bit_cost(sign, 0), bit_cost(sign, 1)};
+        auto& row = c.table[static_cast<size_t>(residual_context(g, a, s))];
+        for (int r = -kCostRange; r <= kCostRange; ++r) {
+          double bits = r == 0 ? zero : nonzero;
+          if (r != 0) {
+            bits += sign_cost[r < 0];
+            const uint64_t mag = static_cast<uint64_t>(r < 0 ? -r : r);
+            const int e = int_class(mag);
+            for (int i = 0; i < e; ++i) bits += cls_one[i];
+            bits += cls_zero[e];  // e <= kTopClass < kMaxClass
+            if (e > 0) bits += mant[e][(mag >> (e - 1)) & 1] + (e - 1);
+          }
+          row[static_cast<size_t>(r + kCostRange)] = bits;
+        }
+      }
+    }
   return c;
 }
 

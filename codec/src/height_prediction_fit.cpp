@@ -102,15 +102,24 @@ void fit_lp_table(const std::vector<LpSample>& samples, LpTable& table, std::arr
   fitted.fill(false);
   for (int s = 0; s < kLpSets; ++s) table.set_defaults(s);
   // Disable the sets too few samples would select, until the selection is stable (disabling a set only moves its
-  // samples to later sets).
+  // samples to later sets). The rounds look up only the masks the samples have (each with its sample count), not
+  // the whole selection table, which the last build below makes once.
+  std::vector<std::pair<uint32_t, size_t>> masks;  // (mask, samples with it)
+  {
+    std::vector<size_t> per_mask(size_t{1} << kLpOffsets, 0);
+    for (const LpSample& smp : samples) ++per_mask[smp.mask];
+    for (uint32_t m = 0; m < per_mask.size(); ++m)
+      if (per_mask[m] != 0) masks.push_back({m, per_mask[m]});
+  }
   std::array<size_t, kLpSets> count{};
   for (int round = 0; round <= kLpSets; ++round) {
-    table.build_selection();
     count.fill(0);
-    for (const LpSample& smp : samples) {
-      const int s = table.first_set[smp.mask];
-      if (s != kLpNoSet) ++count[static_cast<size_t>(s)];
-    }
+    for (const auto& [mask, n] : masks)
+      for (int s = 0; s < kLpSets; ++s)  // the first enabled set inside the mask, as in LpTable::build_selection
+        if (table.enabled[s] && (kLpSetMask[s] & ~mask) == 0) {
+          count[static_cast<size_t>(s)] += n;
+          break;
+        }
     bool changed = false;
     for (int s = 0; s < kLpSets; ++s) {
       if (!table.enabled[s]) continue;

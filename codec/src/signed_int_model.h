@@ -60,11 +60,13 @@ inline void encode_signed(RangeEncoder& rc, SignedIntModel& m, int64_t v) { enco
 
 // The encoder's estimate of what encode_signed(v) costs now, in bits (-log2 of each modelled decision's probability,
 // one bit per direct bit); the models are not changed.
+inline double bit_cost(const BitModel& b, int one) {
+  const double p0 = static_cast<double>(b.p) / kProbOne;
+  return -std::log2(one ? 1.0 - p0 : p0);
+}
+
 inline double signed_cost_bits(const SignedIntModel& m, int64_t v, const BitModel& sign) {
-  auto bit = [](const BitModel& b, int one) {
-    const double p0 = static_cast<double>(b.p) / kProbOne;
-    return -std::log2(one ? 1.0 - p0 : p0);
-  };
+  const auto bit = bit_cost;
   double bits = bit(m.zero, v == 0);
   if (v == 0) return bits;
   bits += bit(sign, v < 0);

@@ -151,5 +151,36 @@ TEST(HeightChoice, WindowStaysOffTheBoxFaces) {
   EXPECT_FALSE(height_window(50, 50.0, 1.5, 0, 100, false).free);  // a lattice coordinate elsewhere
 }
 
+// The cost table (built from each decision's cost once per model) is signed_cost_bits entry by entry, to the last
+// bit, for models that have seen data (every probability different) with and without the §9.7.4 sign contexts.
+TEST(HeightChoice, CostTableIsSignedCostBits) {
+  for (bool sign_context : {false, true}) {
+    LpModels m;
+    m.sign_context = sign_context;
+    uint32_t x = 12345;
+    auto next = [&x] { return x = x * 1103515245u + 12345u, (x >> 16) & 1; };
+    auto train = [&](BitModel& b) {
+      for (int k = 0, n = 1 + static_cast<int>(x % 23); k < n; ++k) b.update(next());
+    };
+    for (auto& row : m.residual)
+      for (SignedIntModel& s : row) {
+        train(s.zero), train(s.sign);
+        for (BitModel& b : s.cls) train(b);
+        for (BitModel& b : s.mant) train(b);
+      }
+    for (auto& row : m.sign)
+      for (BitModel& b : row) train(b);
+    const ResidualCosts c = ResidualCosts::of(m);
+    for (int g = 0; g < kLpGroups; ++g)
+      for (int a = 0; a < kLpActivities; ++a)
+        for (int s = 0; s < kLpSignContexts; ++s) {
+          const BitModel& sign = sign_context ? m.sign[g][s] : m.residual[g][a].sign;
+          for (int r = -kCostRange; r <= kCostRange; ++r)
+            ASSERT_EQ(c.bits(residual_context(g, a, s), r), signed_cost_bits(m.residual[g][a], r, sign))
+                << g << " " << a << " " << s << " " << r;
+        }
+  }
+}
+
 }  // namespace
 }  // namespace prm::codec::test
