@@ -240,12 +240,18 @@ void AabbTree::build(const std::vector<Vec3>& positions, const std::vector<Tri>&
   const size_t max_nodes = 2 * n + 1;
   std::vector<float> boxes(6 * max_nodes, 0.0f);
   std::vector<uint32_t> links(2 * max_nodes, 0);
-  AabbTreeBuilder builder(ids_, tris, boxes, links);
-  Box box, cbox;
-  builder.bounds(0, static_cast<uint32_t>(n), box, cbox);
-  builder.build(0, 0, static_cast<uint32_t>(n), 0, box, cbox);
+  size_t used = 0;
+  {
+    AabbTreeBuilder builder(ids_, tris, boxes, links);
+    Box box, cbox;
+    builder.bounds(0, static_cast<uint32_t>(n), box, cbox);
+    builder.build(0, 0, static_cast<uint32_t>(n), 0, box, cbox);
+    used = builder.next.load();
+  }
+  // Each piece of scratch is freed as soon as it is used up, so that a build's peak is its binning (the triangles'
+  // boxes and centroids, 72 bytes a triangle, and the node slots, 64), not that plus the finished tree.
+  std::vector<BuildTriangle>().swap(tris);
 
-  const size_t used = builder.next.load();
   pairs_.assign((used + 1) / 2, NodePair{});
   for (size_t i = 0; i < used; ++i) {
     NodePair& pair = pairs_[i / 2];
@@ -262,6 +268,8 @@ void AabbTree::build(const std::vector<Vec3>& positions, const std::vector<Tri>&
     pairs_[0].hi[k][1] = -HUGE_VALF;
   }
   pairs_[0].first[1] = pairs_[0].count[1] = 0;
+  std::vector<float>().swap(boxes);
+  std::vector<uint32_t>().swap(links);
   order_depth_first();
 
   triangles_.resize(n);
