@@ -22,8 +22,8 @@ namespace {
 // glibc's malloc raises its mmap threshold to the size of the largest mapped block freed (up to 32 MiB); after that
 // the remesher's large, short-lived arrays (sliced reliefs, OpenMesh kernels, tree scratch) come from the heaps of
 // its threads, which keep the freed pages. A fixed threshold maps every block of 1 MiB or more and unmaps it when
-// freed: measured on the 537k-vertex igea, `prm remesh` peaks at 294 MB instead of 380 MB, for ~0.7 s more system
-// time in 21 s (bench/README.md "Scale").
+// freed: measured on the 537k-vertex igea, `prm remesh` peaks at 291 MB instead of 380 MB, for ~0.85 s more system
+// time in 20 s (bench/README.md "Scale").
 void map_large_blocks() {
 #if defined(__GLIBC__)
   mallopt(M_MMAP_THRESHOLD, 1 << 20);
