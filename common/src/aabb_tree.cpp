@@ -240,12 +240,18 @@ void AabbTree::build(const std::vector<Vec3>& positions, const std::vector<Tri>&
   const size_t max_nodes = 2 * n + 1;
   std::vector<float> boxes(6 * max_nodes, 0.0f);
   std::vector<uint32_t> links(2 * max_nodes, 0);
-  AabbTreeBuilder builder(ids_, tris, boxes, links);
-  Box box, cbox;
-  builder.bounds(0, static_cast<uint32_t>(n), box, cbox);
-  builder.build(0, 0, static_cast<uint32_t>(n), 0, box, cbox);
+  size_t used = 0;
+  {
+    AabbTreeBuilder builder(ids_, tris, boxes, links);
+    Box box, cbox;
+    builder.bounds(0, static_cast<uint32_t>(n), box, cbox);
+    builder.build(0, 0, static_cast<uint32_t>(n), 0, box, cbox);
+    used = builder.next.load();
+  }
+  // Each piece of scratch is freed as soon as it is used up, so that a build's peak is its binning (the triangles'
+  // boxes and centroids, 72 bytes a triangle, and the node slots, 64), not that plus the finished tree.
+  std::vector<BuildTriangle>().swap(tris);
 
-  const size_t used = builder.next.load();
   pairs_.assign((used + 1) / 2, NodePair{});
   for (size_t i = 0; i < used; ++i) {
     NodePair& pair = pairs_[i / 2];
@@ -262,17 +268,30 @@ void AabbTree::build(const std::vector<Vec3>& positions, const std::vector<Tri>&
     pairs_[0].hi[k][1] = -HUGE_VALF;
   }
   pairs_[0].first[1] = pairs_[0].count[1] = 0;
+  std::vector<float>().swap(boxes);
+  std::vector<uint32_t>().swap(links);
   order_depth_first();
 
+  // The used vertices, renumbered in the order the leaves first use them (neighbouring leaves share them, and read
+  // them from nearby memory); the coordinates are copied exactly, so every distance is the same.
+  std::vector<uint32_t> point_of(nv, kNoFace);
   triangles_.resize(n);
   slot_.resize(n);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, n, 4096), [&](const tbb::blocked_range<size_t>& r) {
-    for (size_t k = r.begin(); k != r.end(); ++k) {
-      const Tri& f = triangles[ids_[k]];
-      triangles_[k] = Triangle{positions[f[0]], positions[f[1]], positions[f[2]]};
-      slot_[ids_[k]] = static_cast<uint32_t>(k);
+  uint32_t used_points = 0;
+  for (size_t k = 0; k < n; ++k) {
+    const Tri& f = triangles[ids_[k]];
+    uint32_t corner[3];
+    for (int c = 0; c < 3; ++c) {
+      uint32_t& q = point_of[f[static_cast<size_t>(c)]];
+      if (q == kNoFace) q = used_points++;
+      corner[c] = q;
     }
-  });
+    triangles_[k] = Triangle{corner[0], corner[1], corner[2]};
+    slot_[ids_[k]] = static_cast<uint32_t>(k);
+  }
+  points_.resize(used_points);
+  for (size_t v = 0; v < nv; ++v)
+    if (point_of[v] != kNoFace) points_[point_of[v]] = positions[v];
 }
 
 void AabbTree::order_depth_first() {
@@ -353,7 +372,7 @@ void AabbTree::closest(const Vec3& p, Hit& hint) const {
   if (!hint.found() || hint.face >= slot_.size()) return search(p, hint, HUGE_VAL);
   // The hint's triangle is usually the answer or close to it: its exact distance is the tightest start bound.
   const Triangle& t = triangles_[slot_[hint.face]];
-  const Vec3 q = closest_point_on_triangle(p, t.a, t.b, t.c);
+  const Vec3 q = closest_point_on_triangle(p, points_[t.a], points_[t.b], points_[t.c]);
   hint.point = q;
   search(p, hint, norm2(p - q));
 }
@@ -382,7 +401,7 @@ void AabbTree::search(const Vec3& p, Hit& hit, double best) const {
     if (count > 0) {
       for (uint32_t k = first, end = first + count; k < end; ++k) {
         const Triangle& t = triangles_[k];
-        const Vec3 q = closest_point_on_triangle(p, t.a, t.b, t.c);
+        const Vec3 q = closest_point_on_triangle(p, points_[t.a], points_[t.b], points_[t.c]);
         const double d2 = norm2(p - q);
         if (d2 < best) {
           best = d2;
@@ -425,11 +444,7 @@ void AabbTree::search(const Vec3& p, Hit& hit, double best) const {
 std::array<Vec3, 2> AabbTree::bounds() const {
   if (pairs_.empty()) return {Vec3{0, 0, 0}, Vec3{0, 0, 0}};
   Box box;
-  for (const Triangle& t : triangles_) {
-    box.add(t.a);
-    box.add(t.b);
-    box.add(t.c);
-  }
+  for (const Vec3& q : points_) box.add(q);  // every point is a corner of a triangle
   return {box.lo, box.hi};
 }
 

@@ -397,6 +397,7 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
   remesh::ReliefOptions relief_options;
   relief_options.tau = options.tau;
   relief_options.parallel = options.parallel;
+  relief_options.view_properties = false;
   const remesh::ReliefLayout layout = remesh::build_reliefs(source, relief_options);
   // Issue 23: a grid scale per relief from its measured detail (format 1.5 only).
   std::vector<double> relief_grid_scale;

@@ -149,16 +149,10 @@ size_t make_generic(Mesh& refined, const std::vector<int32_t>& face_relief, cons
 
 void prepare_view(ReliefMeshView& view) {
   if (view.opposite.empty()) view.opposite = face_adjacency(*view.mesh);
-  view.family.assign(3 * view.lattices.size(), {});
-  std::vector<uint8_t> used(view.family.size(), 0);
-  for (size_t r = 0; r < view.relief_axis->size(); ++r) used[static_cast<size_t>(view.slot(static_cast<int32_t>(r)))] = 1;
-  for (size_t s = 0; s < view.family.size(); ++s) {
-    if (!used[s]) continue;
-    auto& fam = view.family[s];
-    fam.resize(view.mesh->positions.size());
-    for (size_t v = 0; v < fam.size(); ++v)
-      fam[v] = lattice_family(view.frame, view.lattices[s / 3], static_cast<int>(s % 3), view.mesh->positions[v]);
-  }
+}
+
+std::array<double, 3> ReliefMeshView::F(int slot, int32_t v) const {
+  return lattice_family(frame, lattices[static_cast<size_t>(slot / 3)], slot % 3, position(v));
 }
 
 }  // namespace prm::remesh

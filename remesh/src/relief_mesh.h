@@ -24,8 +24,6 @@ struct ReliefMeshView {
   std::vector<HexLattice> lattices;
   std::vector<int> relief_grid;                       // per relief id: an index into lattices
   std::vector<std::array<int32_t, 3>> opposite;       // face across edge (k, k+1) of each face, -1 if none
-  // Per lattice slot 3 g + pair (slot()): (alpha, beta, alpha+beta) per vertex; empty for slots no relief uses.
-  std::vector<std::vector<std::array<double, 3>>> family;
 
   int32_t relief(int32_t f) const { return (*face_relief)[static_cast<size_t>(f)]; }
   const HexLattice& lattice(int32_t r) const { return lattices[static_cast<size_t>(relief_grid[static_cast<size_t>(r)])]; }
@@ -35,7 +33,9 @@ struct ReliefMeshView {
   }
   int32_t source(int32_t f) const { return source_face ? (*source_face)[static_cast<size_t>(f)] : f; }
   const Vec3& position(int32_t v) const { return mesh->positions[static_cast<size_t>(v)]; }
-  const std::array<double, 3>& F(int slot, int32_t v) const { return family[static_cast<size_t>(slot)][static_cast<size_t>(v)]; }
+  // The family values (alpha, beta, alpha+beta) of vertex v in the lattice of slot 3 g + pair (slot()), computed
+  // when asked (the same function of the same position every time: 72 bytes a vertex and lattice not stored).
+  std::array<double, 3> F(int slot, int32_t v) const;
 };
 
 // Face adjacency across edges; throws prm::InputError on a non-manifold edge.
@@ -51,7 +51,7 @@ size_t make_generic(Mesh& refined, const std::vector<int32_t>& face_relief, cons
                     const std::vector<std::array<int32_t, 3>>& adjacency, const QuantFrame& frame,
                     const std::vector<HexLattice>& lattices, const std::vector<int>& relief_grid);
 
-// Fills view.opposite (unless the caller has) and view.family.
+// Fills view.opposite (unless the caller has).
 void prepare_view(ReliefMeshView& view);
 
 }  // namespace prm::remesh

@@ -1,5 +1,6 @@
 #include "relief_resampling.h"
 
+#include <algorithm>
 #include <deque>
 #include <stdexcept>
 
@@ -15,9 +16,13 @@ constexpr double kMinArea = 1e-12;
 class Resampler {
  public:
   Resampler(const SlicedRelief& s, int axis) : s_(s), sign_(axis_sign(axis)) {
-    // Reserved, not grown by doubling (a disk's E = V + F - 1; holes add one each): the sliced relief is the
-    // largest structure of a large input's remesh.
-    mesh_.reserve(s.vertices.size(), s.vertices.size() + s.faces.size(), s.faces.size());
+    // Reserved, not grown by doubling: the sliced relief is the largest structure of a large input's remesh. A
+    // disk's E = V + F - 1, and each hole adds one; E = (3 F + B) / 2 with B boundary edges, as many as the
+    // boundary vertices (each on one loop: the slicing splits pinched corners), counts the holes too.
+    size_t boundary = 0;
+    for (const SliceVertex& v : s.vertices) boundary += v.boundary;
+    const size_t edges = std::max(s.vertices.size() + s.faces.size(), (3 * s.faces.size() + boundary) / 2 + 1);
+    mesh_.reserve(s.vertices.size(), edges, s.faces.size());
     for (const SliceVertex& v : s.vertices) mesh_.add_vertex(OMesh::Point(v.position[0], v.position[1], v.position[2]));
     for (const auto& f : s.faces) {
       const auto fh = mesh_.add_face(OMesh::VertexHandle(f[0]), OMesh::VertexHandle(f[1]), OMesh::VertexHandle(f[2]));

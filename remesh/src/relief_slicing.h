@@ -17,21 +17,22 @@ namespace prm::remesh {
 
 enum class SliceKind : uint8_t { Corner, Crossing, Lattice };
 
-struct SliceVertex {
+struct SliceVertex {  // fields ordered for packing: 112 bytes (a large input's remesh holds millions)
   SliceKind kind = SliceKind::Corner;
   bool boundary = false;       // on the relief's boundary: never moves during resampling
   uint8_t family = 0;          // Crossing: 0 (alpha = c), 1 (beta = c), 2 (alpha + beta = c)
+  bool upper = false;          // Corner: upper (odd) grid triangle of the cell
+  int32_t refined_vertex = -1;           // Corner: vertex of the refined mesh
   int64_t value = 0;           // Crossing: c
   int64_t segment = 0;         // Crossing: which grid edge of the line (see segment_of())
   int64_t i = 0, j = 0;        // Lattice: lattice coordinates; Corner: cell (floor alpha, floor beta)
-  bool upper = false;          // Corner: upper (odd) grid triangle of the cell
   std::array<double, 3> F{};   // family values alpha, beta, alpha + beta (exact integers where on a line)
   Vec3 position{0, 0, 0};
-  int32_t refined_vertex = -1;           // Corner: vertex of the refined mesh
   int32_t edge_a = -1, edge_b = -1;      // Crossing: refined edge, edge_a < edge_b
   double t = 0;                          // Crossing: parameter from edge_a to edge_b
   int32_t source_face = -1;              // input face the vertex lies on (for reference normals)
 };
+static_assert(sizeof(SliceVertex) <= 112, "SliceVertex grew: see the field order");
 
 struct SlicedRelief {
   std::vector<SliceVertex> vertices;

@@ -104,6 +104,7 @@ ReliefLayout build_reliefs(const Mesh& input, const ReliefOptions& options) {
   out.boundary_length = relief_boundary_length(out.mesh, refined_adjacency, out.face_relief);
 
   // Face properties for the PLY file and the pictures (paper Fig. 1, 2, 10: the layout colour-coded).
+  if (!options.view_properties) return out;
   const size_t rf = out.mesh.triangles.size();
   std::vector<double> rel(rf), red(rf), green(rf), blue(rf);
   for (size_t f = 0; f < rf; ++f) {

@@ -59,7 +59,11 @@ RemeshResult remesh(const Mesh& input, const RemeshOptions& options, const Error
 
   RemeshResult result;
   ReliefLayout built;
-  if (!options.layout) built = build_reliefs(input, options.reliefs);
+  if (!options.layout) {
+    ReliefOptions relief_options = options.reliefs;
+    relief_options.view_properties = false;  // only the layout's geometry and labels are used here
+    built = build_reliefs(input, relief_options);
+  }
   const ReliefLayout& layout = options.layout ? *options.layout : built;
   result.reliefs = layout.reliefs.size();
   result.relief_boundary_length = layout.boundary_length;

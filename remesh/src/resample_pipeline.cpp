@@ -151,7 +151,12 @@ PrmMesh resample_and_merge(const LayoutInput& layout, const ResampleOptions& opt
 
   const auto t1 = std::chrono::steady_clock::now();
   MergedMesh merged = merge_reliefs(view, resampled);
-  resampled.clear();
+  // The slicing's inputs are used up: the nudged copy, its adjacency and the per-relief face lists go before the
+  // seam passes (and, without a lent tree, the input's AABB tree) allocate theirs.
+  std::vector<ResampledRelief>().swap(resampled);
+  view = ReliefMeshView();
+  refined = Mesh();
+  std::vector<std::vector<int32_t>>().swap(relief_faces);
   st.fill_triangles = merged.fill_triangles;
   const Mesh& input = layout.input ? *layout.input : *layout.refined;
   const std::vector<Vec3> normals = unit_face_normals(input);

@@ -148,6 +148,23 @@ TEST(Reliefs, SphereHasSixEqualReliefs) {
   expect_exact_tiling(sphere, L, "sphere");
 }
 
+TEST(Reliefs, ViewPropertiesOffChangesNothingButTheProperties) {
+  // remesh and pack build the layout without its PLY view (four doubles a refined face): the same layout otherwise.
+  const Mesh m = load_closed(std::string(PRM_SHARED_MESHES) + "/horse.ply");
+  ReliefOptions bare;
+  bare.view_properties = false;
+  const ReliefLayout a = build_reliefs(m, {}), b = build_reliefs(m, bare);
+  EXPECT_EQ(a.mesh.face_properties.size(), 4u);
+  EXPECT_TRUE(b.mesh.face_properties.empty());
+  EXPECT_TRUE(b.mesh.comments.empty());
+  EXPECT_EQ(a.mesh.positions, b.mesh.positions);
+  EXPECT_EQ(a.mesh.triangles, b.mesh.triangles);
+  EXPECT_EQ(a.face_relief, b.face_relief);
+  EXPECT_EQ(a.source_face, b.source_face);
+  EXPECT_EQ(a.reliefs.size(), b.reliefs.size());
+  EXPECT_EQ(a.boundary_length, b.boundary_length);
+}
+
 TEST(Reliefs, RefusesBadTauAndNonManifoldInput) {
   const Mesh sphere = test::icosphere(1);
   ReliefOptions o;

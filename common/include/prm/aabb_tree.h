@@ -3,7 +3,8 @@
 // Build: binned surface-area heuristic on the triangle centroids, O(n log n), the upper levels in parallel (oneTBB).
 // Query: depth-first, nearer child first, pruned by the best squared distance so far; leaves hold at most a few
 // triangles whose closest points are computed exactly in double precision (prm/point_triangle_distance.h).
-// The tree copies the geometry it needs: the mesh may change or die after the build. Queries are const and may run
+// The tree copies the geometry it needs (the used vertices once, and the triangles as indices into them): the mesh
+// may change or die after the build. Queries are const and may run
 // concurrently from any number of threads.
 #pragma once
 
@@ -64,8 +65,10 @@ class AabbTree {
     uint32_t first[2];  // leaf: first triangle in triangles_; inner: left child (even)
     uint32_t count[2];  // leaf: number of triangles (> 0); inner: 0
   };
+  // A triangle's corners: indices into points_ (24 bytes a triangle with the points, instead of 72 for the corners'
+  // coordinates; the tree is the largest structure a large input's pack keeps).
   struct Triangle {
-    Vec3 a, b, c;
+    uint32_t a, b, c;
   };
 
   void build(const std::vector<Vec3>& positions, const std::vector<Tri>& triangles);
@@ -77,6 +80,7 @@ class AabbTree {
 
   std::vector<NodePair> pairs_;
   std::vector<Triangle> triangles_;  // in leaf order
+  std::vector<Vec3> points_;         // the mesh's used vertices, numbered in the order the leaves first use them
   std::vector<uint32_t> ids_;        // triangles_[k] is the mesh's triangle ids_[k]
   std::vector<uint32_t> slot_;       // the inverse: triangle f is triangles_[slot_[f]]
 };

@@ -43,6 +43,9 @@ struct ReliefOptions {
   // docs/design/prm-stream.md, fifth pass).
   double min_relief_triangles = 256;
   double merge_facing = 0.02;  // in (0, 1/sqrt(3)); min(merge_facing, tau) applies
+  // The layout mesh's face properties and comments (ReliefLayout::mesh), for its PLY file and pictures: four
+  // doubles a refined face, which the remesher never reads (remesh and pack turn them off).
+  bool view_properties = true;
 };
 
 struct Relief {
@@ -53,7 +56,7 @@ struct Relief {
 
 struct ReliefLayout {
   Mesh mesh;                         // the refined mesh; face properties "relief" (int32), red, green, blue (uint8)
-                                     // and a comment "prm-relief <id> axis <a>" per relief
+                                     // and a comment "prm-relief <id> axis <a>" per relief (if view_properties)
   std::vector<int32_t> face_relief;  // relief id per face of mesh
   std::vector<Relief> reliefs;       // per relief id
   std::vector<int32_t> source_face;  // per refined face: the input face it lies in
