@@ -16,7 +16,7 @@ void SpiraleReversi::init(uint32_t num_triangles, uint32_t num_vertices, bool se
   stack_.clear();
   closed_ = 0;
   decoded_ = 0;
-  seam_tracked_ = seam_context;
+  seam_tracked_ = kSeamShortcut && seam_context;
   error_.clear();
   non_manifold_ = false;
 }
@@ -68,7 +68,8 @@ int64_t SpiraleReversi::open_edge_out_of(uint32_t c) {
 uint32_t SpiraleReversi::gate_start_seam() {
   if (stack_.empty()) return 0;
   const uint32_t c0 = 3 * stack_.back();
-  if (seam_tracked_ && records_[find(rec_[c0])].odd_near == 0) return 0;  // no odd record shares a triangle with it
+  // No odd record shares a triangle with the gate's start vertex (Record::odd_near): Seam is 0 without the walk.
+  if (kSeamShortcut && seam_tracked_ && records_[find(rec_[c0])].odd_near == 0) return 0;
   auto odd = [&](uint32_t c) { return records_[find(rec_[c])].odd != 0; };
   // One side: 1 odd vertex found, 0 the fan closed (every triangle seen), 2 an open edge or the bound. Crossing the
   // edge opposite turn(c) into the triangle of d, the next triangle's two other vertices are the far end of that
@@ -92,20 +93,20 @@ uint32_t SpiraleReversi::gate_start_seam() {
 
 // §6.4.8 Closing a vertex gives it the next id, counting down from the number of vertices, so that ids end up in
 // forward order of discovery (§6.6).
-bool SpiraleReversi::close_vertex(uint32_t c) {
-  const uint32_t r = find(rec_[c]);
+bool SpiraleReversi::close_vertex(uint32_t record, uint32_t c) {
+  const uint32_t r = find(record);
   Record& x = records_[r];
   if (x.id >= 0) return fail("a vertex is closed twice");
   if (closed_ >= num_vertices_) return fail("more vertices closed than the component sizes allow");
   x.id = static_cast<int32_t>(num_vertices_ - 1 - closed_);
   x.odd = x.count != 6;
   ++closed_;
-  if (x.odd && seam_tracked_) note_odd(c, r);
+  if (kSeamShortcut && x.odd && seam_tracked_) note_odd(c, r);
   return true;
 }
 
-// Rotates about the vertex of c across glued edges and counts r in odd_near of the two other corners' records of
-// every triangle met. The rotation meets every corner of r only if it closes after exactly count(r) triangles
+// Rotates about the vertex of c across glued edges and sets odd_near of the two other corners' records of every
+// triangle met. The rotation meets every corner of r only if it closes after exactly count(r) triangles
 // (corners of one record are joined only through glued edges, §6.4.2); otherwise tracking stops.
 void SpiraleReversi::note_odd(uint32_t c, uint32_t r) {
   const uint32_t count = records_[r].count;
@@ -116,8 +117,8 @@ void SpiraleReversi::note_odd(uint32_t c, uint32_t r) {
       seam_tracked_ = false;
       return;
     }
-    add_near(records_[find(rec_[corner_next(k)])].odd_near, 1);
-    add_near(records_[find(rec_[corner_prev(k)])].odd_near, 1);
+    records_[find(rec_[corner_next(k)])].odd_near = 1;
+    records_[find(rec_[corner_prev(k)])].odd_near = 1;
     ++n;
     k = corner_next(static_cast<uint32_t>(d));
   } while (k != c);
@@ -152,7 +153,7 @@ bool SpiraleReversi::apply(uint32_t t, uint8_t symbol) {
       glue(b, static_cast<uint32_t>(e));
       set_corner(a, rec_[corner_next(static_cast<uint32_t>(e))]);
       stack_.back() = t;
-      return close_vertex(v);
+      return close_vertex(rec_[v], v);
     }
     case kL:  // §6.4.5 attach by the right edge; a is new
       glue(a, jg);
@@ -247,7 +248,7 @@ bool SpiraleReversi::close_component(uint32_t t0) {
   // §6.6 ids in forward order: r, q, p are the last three closed in reverse.
   const uint32_t rr = find(rec_[r]), rq = find(rec_[q]), rp = find(rec_[p]);
   if (rr == rq || rq == rp || rr == rp) return fail("the first triangle of a component is degenerate");
-  return close_vertex(r) && close_vertex(q) && close_vertex(p);
+  return close_vertex(rr, r) && close_vertex(rq, q) && close_vertex(rp, p);
 }
 
 // §6.4.8 / §6.8 Final ids and validation: every edge glued, every record closed, and the result an oriented closed

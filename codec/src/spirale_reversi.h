@@ -12,7 +12,6 @@
 // triangles decoded so far (tail_table.h), and the vertex records are created as symbols create them.
 #pragma once
 
-#include <algorithm>
 #include <cassert>
 #include <cstdint>
 #include <string>
@@ -23,6 +22,14 @@
 #include "tail_table.h"
 
 namespace prm::codec {
+
+// §6.5.2 The Seam shortcut (SpiraleReversi::Record::odd_near) is left out of the wasm module, whose size is an issue
+// 20 target: it cost 200 B gzipped there (web/README.md "hdecode4").
+#if defined(__wasm__)
+constexpr bool kSeamShortcut = false;
+#else
+constexpr bool kSeamShortcut = true;
+#endif
 
 struct HandleEvent {     // §6.4.6
   uint32_t triangle;     // forward index of the S triangle whose left branch was consumed
@@ -83,26 +90,23 @@ class SpiraleReversi {
     ++x.count;
     if (x.id >= 0) {
       x.odd = x.count != 6;
-      seam_tracked_ = false;  // a closed vertex gains a triangle (no valid stream does): odd_near is not kept
+      if (kSeamShortcut) seam_tracked_ = false;  // a closed vertex gains a triangle (no valid stream does)
     }
   }
   void glue(uint32_t c1, uint32_t c2) {
     opp_[c1] = static_cast<int32_t>(c2);
     opp_[c2] = static_cast<int32_t>(c1);
   }
-  // Closes the vertex of corner c.
-  bool close_vertex(uint32_t c);
-  // §6.5.2 The vertex of corner c (root record r) is closed with a triangle count other than 6: counts it in
-  // odd_near of every record that shares a triangle with it.
+  // Closes the vertex of record `record`, that of corner c.
+  bool close_vertex(uint32_t record, uint32_t c);
+  // §6.5.2 The vertex of corner c (root record r) is closed with a triangle count other than 6: sets odd_near of
+  // every record that shares a triangle with it.
   void note_odd(uint32_t c, uint32_t r);
-  static void add_near(uint16_t& odd_near, uint32_t n) {
-    odd_near = static_cast<uint16_t>(std::min<uint32_t>(odd_near + n, 0xFFFF));
-  }
   // §6.4.5 Record r2 joins record r1 (both roots, both open).
   void merge(uint32_t r1, uint32_t r2) {
     records_[r2].parent = r1;
     records_[r1].count += records_[r2].count;
-    add_near(records_[r1].odd_near, records_[r2].odd_near);
+    if (kSeamShortcut) records_[r1].odd_near |= records_[r2].odd_near;
   }
   bool fail(const char* message);
   // Triangle t joins the tables. The callers apply t = T - 1 down to 0, one each (a contract, asserted).
@@ -125,11 +129,11 @@ class SpiraleReversi {
   // root's count and id change only in set_corner and close_vertex, and records merge only while open). One struct,
   // so that a find and the fields it leads to share a cache line.
   //
-  // odd_near (§6.5.2 Seam without the walk): for a root, at least the number of odd records that share a triangle
-  // with one of its corners, saturating; kept while seam_tracked_. Every glued edge joins corners of the same records
-  // at both ends (§6.4.2), so the Seam walk from a corner of record X only meets triangles with a corner of X, and
-  // tests records that share them: with odd_near 0 it finds no odd vertex and Seam is 0. A record becomes odd only
-  // when it is closed (note_odd counts it in all its triangles, its fan being complete) or when a closed record gains
+  // odd_near (§6.5.2 Seam without the walk): for a root, 1 if an odd record may share a triangle with one of its
+  // corners, 0 if none does; kept while seam_tracked_. Every glued edge joins corners of the same records at both
+  // ends (§6.4.2), so the Seam walk from a corner of record X only meets triangles with a corner of X, and tests
+  // records that share them: with odd_near 0 it finds no odd vertex and Seam is 0. A record becomes odd only when it
+  // is closed (note_odd marks the records of all its triangles, its fan being complete) or when a closed record gains
   // a triangle (no valid stream does; tracking stops, and every Seam is walked from then on).
   struct Record {
     uint32_t parent, count;
