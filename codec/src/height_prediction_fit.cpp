@@ -111,15 +111,19 @@ void fit_lp_table(const std::vector<LpSample>& samples, LpTable& table, std::arr
     for (uint32_t m = 0; m < per_mask.size(); ++m)
       if (per_mask[m] != 0) masks.push_back({m, per_mask[m]});
   }
+  // The first enabled set inside `mask`, as LpTable::build_selection's table gives it (kLpNoSet if none).
+  const auto first_enabled = [&table](uint32_t mask) {
+    for (int s = 0; s < kLpSets; ++s)
+      if (table.enabled[s] && (kLpSetMask[s] & ~mask) == 0) return s;
+    return int{kLpNoSet};
+  };
   std::array<size_t, kLpSets> count{};
   for (int round = 0; round <= kLpSets; ++round) {
     count.fill(0);
-    for (const auto& [mask, n] : masks)
-      for (int s = 0; s < kLpSets; ++s)  // the first enabled set inside the mask, as in LpTable::build_selection
-        if (table.enabled[s] && (kLpSetMask[s] & ~mask) == 0) {
-          count[static_cast<size_t>(s)] += n;
-          break;
-        }
+    for (const auto& [mask, n] : masks) {
+      const int s = first_enabled(mask);
+      if (s != kLpNoSet) count[static_cast<size_t>(s)] += n;
+    }
     bool changed = false;
     for (int s = 0; s < kLpSets; ++s) {
       if (!table.enabled[s]) continue;
@@ -131,10 +135,13 @@ void fit_lp_table(const std::vector<LpSample>& samples, LpTable& table, std::arr
     }
     if (!changed) break;
   }
-  table.build_selection();
+  // Each sample's row is the first enabled set inside its mask, looked up for the masks the samples have only; the
+  // whole selection table is built once, at the end, after the fits have settled which sets stay enabled.
+  std::vector<uint8_t> set_of_mask(size_t{1} << kLpOffsets, kLpNoSet);
+  for (const auto& mn : masks) set_of_mask[mn.first] = static_cast<uint8_t>(first_enabled(mn.first));
   std::vector<std::vector<const LpSample*>> rows(kLpSets);
   for (const LpSample& smp : samples) {
-    const int s = table.first_set[smp.mask];
+    const int s = set_of_mask[smp.mask];
     if (s != kLpNoSet) rows[static_cast<size_t>(s)].push_back(&smp);
   }
   for (int s = 0; s < kLpSets; ++s) {
