@@ -65,11 +65,7 @@ int64_t SpiraleReversi::open_edge_out_of(uint32_t c) {
 // first j itself and up to kSeamWalk triangles rotating across the edge opposite next(c), then up to kSeamWalk
 // rotating across the edge opposite prev(c) from j; each walk stops at an open edge or back at j. Seam is 1 if the
 // vertex of a visited triangle's corner next(c) or prev(c) is closed and has a triangle count other than 6.
-uint32_t SpiraleReversi::gate_start_seam() {
-  if (stack_.empty()) return 0;
-  const uint32_t c0 = 3 * stack_.back();
-  // No odd record shares a triangle with the gate's start vertex (Record::odd_near): Seam is 0 without the walk.
-  if (kSeamShortcut && seam_tracked_ && records_[find(rec_[c0])].odd_near == 0) return 0;
+uint32_t SpiraleReversi::seam_walk(uint32_t c0) {
   auto odd = [&](uint32_t c) { return records_[find(rec_[c])].odd != 0; };
   // One side: 1 odd vertex found, 0 the fan closed (every triangle seen), 2 an open edge or the bound. Crossing the
   // edge opposite turn(c) into the triangle of d, the next triangle's two other vertices are the far end of that
@@ -254,7 +250,7 @@ bool SpiraleReversi::close_component(uint32_t t0) {
 // §6.4.8 / §6.8 Final ids and validation: every edge glued, every record closed, and the result an oriented closed
 // 2-manifold (each vertex one cycle of triangles, no triangle using a vertex twice, no two edges joining the same
 // pair of vertices).
-bool SpiraleReversi::finish(std::vector<uint32_t>& corner_vertex) {
+bool SpiraleReversi::finish(std::vector<uint32_t>& corner_vertex, std::vector<uint8_t>* valence) {
   if (!stack_.empty()) return fail("pieces left on the stack");
   if (closed_ != num_vertices_) return fail("vertex count differs from the component sizes and handles");
   // Vertex id of every record, then of every corner.
@@ -276,6 +272,13 @@ bool SpiraleReversi::finish(std::vector<uint32_t>& corner_vertex) {
     for (size_t i = c; i < c + 3; ++i) rec[i] = static_cast<uint32_t>(records_[rec[i]].id);  // records become ids
     if (rec[c] == rec[c + 1] || rec[c + 1] == rec[c + 2] || rec[c] == rec[c + 2])
       return fail("a decoded triangle uses a vertex twice");
+  }
+  // A root's count is the number of corners set to its records (set_corner, merge): its vertex's triangle count.
+  if (valence) {
+    valence->assign(num_vertices_, 0);
+    for (uint32_t r = 0; r < num_records; ++r)
+      if (records_[r].parent == r)
+        (*valence)[static_cast<uint32_t>(records_[r].id)] = static_cast<uint8_t>(std::min<uint32_t>(records_[r].count, 255));
   }
   corner_vertex.swap(rec_.all());
   rec_.reset(0, 0);

@@ -53,7 +53,15 @@ class SpiraleReversi {
     return stack_.empty() ? 0 : records_[find(rec_[3 * stack_.back()])].count;
   }
   // §6.5.2 Seam: 1 if a closed vertex of the decoded fan of the gate's start vertex has a valence other than 6.
-  uint32_t gate_start_seam();
+  uint32_t gate_start_seam() { return stack_.empty() ? 0 : seam_of(3 * stack_.back(), find(rec_[3 * stack_.back()])); }
+  // §6.5.2 Both inputs at once, with one lookup of the gate's start record (the stack is not empty): Count, and
+  // Seam if `seam_context` (else 0). The same values as gate_start_count() and gate_start_seam().
+  uint32_t gate_start(bool seam_context, uint32_t& seam) {
+    const uint32_t c0 = 3 * stack_.back();
+    const uint32_t r = find(rec_[c0]);
+    seam = seam_context ? seam_of(c0, r) : 0;
+    return records_[r].count;
+  }
 
   // §6.4.3-6.4.7 One step each, for t = T - 1 down to 0 in turn; false (with error() set) when the operation is
   // impossible.
@@ -61,8 +69,9 @@ class SpiraleReversi {
   bool apply_handle(uint32_t t, const HandleEvent& event, uint32_t component_end);
   bool close_component(uint32_t t0);
 
-  // §6.4.8 Final vertex ids per corner (3 per triangle, canonical corner order) and validation (§6.8).
-  bool finish(std::vector<uint32_t>& corner_vertex);
+  // §6.4.8 Final vertex ids per corner (3 per triangle, canonical corner order) and validation (§6.8). `valence`
+  // (optional): per vertex id, its triangle count capped at 255 (§7.3's valence context), from the records' counts.
+  bool finish(std::vector<uint32_t>& corner_vertex, std::vector<uint8_t>* valence = nullptr);
 
   // All the opposite corners, once every triangle is applied.
   const std::vector<int32_t>& opposites() const { return opp_.all(); }
@@ -97,6 +106,13 @@ class SpiraleReversi {
     opp_[c1] = static_cast<int32_t>(c2);
     opp_[c2] = static_cast<int32_t>(c1);
   }
+  // §6.5.2 Seam from corner c0 of the top piece's triangle, whose root record is r: 0 without the walk when no odd
+  // record shares a triangle with r (Record::odd_near), else the walk (seam_walk).
+  uint32_t seam_of(uint32_t c0, uint32_t r) {
+    if (kSeamShortcut && seam_tracked_ && records_[r].odd_near == 0) return 0;
+    return seam_walk(c0);
+  }
+  uint32_t seam_walk(uint32_t c0);
   // Closes the vertex of record `record`, that of corner c.
   bool close_vertex(uint32_t record, uint32_t c);
   // §6.5.2 The vertex of corner c (root record r) is closed with a triangle count other than 6: sets odd_near of
