@@ -181,13 +181,15 @@ inline bool seed_known(const ClosedMesh& mesh, const std::vector<uint32_t>& vert
   for (uint32_t v = 0; v < mesh.num_vertices; ++v) {
     if (!known[v]) continue;
     const uint32_t c0 = vertex_corner[v];
-    uint32_t c = c0;
+    uint32_t c = c0, x = cv[corner_next(c)];
     do {
-      const uint32_t x = cv[corner_next(c)];
       if (mark[x] == v) return false;
       mark[x] = v;
       order.push_neighbour(x);
-      c = fan_next(opp, c);
+      // fan_next: c becomes prev(d), d = opp[prev(c)]; its next corner is d, whose vertex is the next neighbour.
+      const uint32_t d = static_cast<uint32_t>(opp[corner_prev(c)]);
+      c = corner_prev(d);
+      x = cv[d];
     } while (c != c0);
   }
   return true;

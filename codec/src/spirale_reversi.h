@@ -19,6 +19,7 @@
 
 #include "always_inline.h"
 #include "clers_shared.h"
+#include "corner_table.h"
 #include "tail_table.h"
 
 namespace prm::codec {
@@ -163,5 +164,72 @@ class SpiraleReversi {
   std::string error_;
   bool non_manifold_ = false;
 };
+
+// Defined here so that the decoder's symbol loop (clers_decode.cpp) inlines it.
+// §6.4.3-6.4.5 One symbol applied to triangle t (corners 3t: a, 3t+1: b, 3t+2: v; gate a->b, right edge b->v,
+// left edge v->a).
+inline bool SpiraleReversi::apply(uint32_t t, uint8_t symbol) {
+  add_triangle(t);
+  const uint32_t a = 3 * t, b = a + 1, v = a + 2;
+  ++decoded_;
+  if (symbol == kE) {  // §6.4.3 a new piece of one triangle
+    set_corner(a, new_record());
+    set_corner(b, new_record());
+    set_corner(v, new_record());
+    stack_.push_back(t);
+    return true;
+  }
+  if (stack_.empty()) return fail("a C, L, R or S symbol with no piece to attach to");
+  const uint32_t j = stack_.back();
+  const uint32_t ja = 3 * j, jb = ja + 1, jg = ja + 2;  // j's gate is ja->jb, opposite jg
+  switch (symbol) {
+    case kC: {  // §6.4.4 attach by the right edge, then zip the left edge around the tip
+      const uint32_t tip = find(rec_[ja]);
+      if (records_[tip].id >= 0) return fail("C at a closed vertex");
+      const int64_t e = open_edge_into(ja);
+      if (e < 0 || static_cast<uint32_t>(e) == jg) return fail("C whose tip has no open edge to zip");
+      glue(a, jg);
+      set_corner(v, rec_[ja]);
+      set_corner(b, rec_[jb]);
+      glue(b, static_cast<uint32_t>(e));
+      set_corner(a, rec_[corner_next(static_cast<uint32_t>(e))]);
+      stack_.back() = t;
+      return close_vertex(rec_[v], v);
+    }
+    case kL:  // §6.4.5 attach by the right edge; a is new
+      glue(a, jg);
+      set_corner(v, rec_[ja]);
+      set_corner(b, rec_[jb]);
+      set_corner(a, new_record());
+      stack_.back() = t;
+      return true;
+    case kR:  // §6.4.5 attach by the left edge; b is new
+      glue(b, jg);
+      set_corner(a, rec_[ja]);
+      set_corner(v, rec_[jb]);
+      set_corner(b, new_record());
+      stack_.back() = t;
+      return true;
+    case kS: {  // §6.4.5 join the top two pieces: right child on top, left child below
+      if (stack_.size() < 2) return fail("S with fewer than two pieces");
+      const uint32_t k = stack_[stack_.size() - 2];
+      const uint32_t ka = 3 * k, kb = ka + 1, kg = ka + 2;
+      const uint32_t r1 = find(rec_[ja]), r2 = find(rec_[kb]);
+      if (r1 == r2) return fail("S joins a vertex to itself");
+      if (records_[r1].id >= 0 || records_[r2].id >= 0) return fail("S at a closed vertex");
+      glue(a, jg);
+      glue(b, kg);
+      set_corner(b, rec_[jb]);
+      set_corner(a, rec_[ka]);
+      merge(r1, r2);  // §6.4.5 the two records of the tip become one
+      set_corner(v, r1);
+      stack_.pop_back();
+      stack_.back() = t;
+      return true;
+    }
+    default:
+      return fail("symbol out of range");
+  }
+}
 
 }  // namespace prm::codec
