@@ -36,27 +36,31 @@ bool SpiraleReversi::fail(const char* message) {
 // §6.4.2 Rotation about the vertex of corner c across glued edges, away from c's outgoing edge, until an open edge
 // ending at that vertex is met. Returns the corner opposite that open edge, or -1 if the fan closes (or the walk
 // exceeds the number of corners, which only a corrupt state can cause).
+// Each step moves c to next(d), d = opp[next(c)]: the rotation is back at c when d = prev(c), and the next step's
+// corner next(next(d)) is prev(d).
 int64_t SpiraleReversi::open_edge_into(uint32_t c) {
-  const uint32_t start = c;
-  for (uint64_t steps = 0; steps <= 3 * uint64_t{decoded_} + 3; ++steps) {
-    const uint32_t k = corner_next(c);
+  const int32_t stop = static_cast<int32_t>(corner_prev(c));
+  const uint64_t bound = 3 * uint64_t{decoded_} + 3;
+  uint32_t k = corner_next(c);
+  for (uint64_t steps = 0; steps <= bound; ++steps) {
     const int32_t d = opp_[k];
     if (d < 0) return k;
-    c = corner_next(static_cast<uint32_t>(d));
-    if (c == start) return -1;
+    if (d == stop) return -1;
+    k = corner_prev(static_cast<uint32_t>(d));
   }
   return -1;
 }
 
 // The mirror: rotation across outgoing edges until an open edge leaving the vertex of c.
 int64_t SpiraleReversi::open_edge_out_of(uint32_t c) {
-  const uint32_t start = c;
-  for (uint64_t steps = 0; steps <= 3 * uint64_t{decoded_} + 3; ++steps) {
-    const uint32_t k = corner_prev(c);
+  const int32_t stop = static_cast<int32_t>(corner_next(c));
+  const uint64_t bound = 3 * uint64_t{decoded_} + 3;
+  uint32_t k = corner_prev(c);
+  for (uint64_t steps = 0; steps <= bound; ++steps) {
     const int32_t d = opp_[k];
     if (d < 0) return k;
-    c = corner_prev(static_cast<uint32_t>(d));
-    if (c == start) return -1;
+    if (d == stop) return -1;
+    k = corner_next(static_cast<uint32_t>(d));
   }
   return -1;
 }
@@ -89,8 +93,7 @@ uint32_t SpiraleReversi::seam_walk(uint32_t c0) {
 
 // §6.4.8 Closing a vertex gives it the next id, counting down from the number of vertices, so that ids end up in
 // forward order of discovery (§6.6).
-bool SpiraleReversi::close_vertex(uint32_t record, uint32_t c) {
-  const uint32_t r = find(record);
+bool SpiraleReversi::close_root(uint32_t r, uint32_t c) {
   Record& x = records_[r];
   if (x.id >= 0) return fail("a vertex is closed twice");
   if (closed_ >= num_vertices_) return fail("more vertices closed than the component sizes allow");
@@ -146,7 +149,7 @@ bool SpiraleReversi::apply_handle(uint32_t t, const HandleEvent& event, uint32_t
   set_corner(b, rec_[jb]);
   set_corner(a, rec_[corner_next(pc)]);
   merge(r1, rq);
-  set_corner(v, r1);
+  set_corner_root(v, r1, r1);
   stack_.back() = t;
   return true;
 }
@@ -178,7 +181,7 @@ bool SpiraleReversi::close_component(uint32_t t0) {
   // §6.6 ids in forward order: r, q, p are the last three closed in reverse.
   const uint32_t rr = find(rec_[r]), rq = find(rec_[q]), rp = find(rec_[p]);
   if (rr == rq || rq == rp || rr == rp) return fail("the first triangle of a component is degenerate");
-  return close_vertex(rr, r) && close_vertex(rq, q) && close_vertex(rp, p);
+  return close_root(rr, r) && close_root(rq, q) && close_root(rp, p);
 }
 
 // §6.4.8 / §6.8 Final ids and validation: every edge glued, every record closed, and the result an oriented closed

@@ -88,14 +88,16 @@ class SpiraleReversi {
     }
     return r;
   }
-  uint32_t new_record() {
+  // Corner c gets a new record (its count 1: set_corner of a new record).
+  void set_corner_new(uint32_t c) {
     const uint32_t r = static_cast<uint32_t>(records_.size());
-    records_.push_back({r, 0, -1, 0, 0});
-    return r;
+    records_.push_back({r, 1, -1, 0, 0});
+    rec_[c] = r;
   }
-  PRM_WASM_INLINE void set_corner(uint32_t c, uint32_t record) {
+  PRM_WASM_INLINE void set_corner(uint32_t c, uint32_t record) { set_corner_root(c, record, find(record)); }
+  // set_corner when the caller knows find(record) = r.
+  PRM_WASM_INLINE void set_corner_root(uint32_t c, uint32_t record, uint32_t r) {
     rec_[c] = record;
-    const uint32_t r = find(record);
     Record& x = records_[r];
     ++x.count;
     if (x.id >= 0) {
@@ -114,8 +116,8 @@ class SpiraleReversi {
     return seam_walk(c0);
   }
   uint32_t seam_walk(uint32_t c0);
-  // Closes the vertex of record `record`, that of corner c.
-  bool close_vertex(uint32_t record, uint32_t c);
+  // Closes the vertex of root record r, that of corner c.
+  bool close_root(uint32_t r, uint32_t c);
   // §6.5.2 The vertex of corner c (root record r) is closed with a triangle count other than 6: sets odd_near of
   // every record that shares a triangle with it.
   void note_odd(uint32_t c, uint32_t r);
@@ -143,7 +145,7 @@ class SpiraleReversi {
   TailTable<uint32_t> rec_;
   // §6.4.1 A vertex record: its union-find parent, and for a root its triangle count, its vertex id once closed (-1
   // before), and whether it is closed with a triangle count other than 6 (§6.5.2 Seam; kept with count and id: a
-  // root's count and id change only in set_corner and close_vertex, and records merge only while open). One struct,
+  // root's count and id change only in set_corner and close_root, and records merge only while open). One struct,
   // so that a find and the fields it leads to share a cache line.
   //
   // odd_near (§6.5.2 Seam without the walk): for a root, 1 if an odd record may share a triangle with one of its
@@ -173,9 +175,9 @@ inline bool SpiraleReversi::apply(uint32_t t, uint8_t symbol) {
   const uint32_t a = 3 * t, b = a + 1, v = a + 2;
   ++decoded_;
   if (symbol == kE) {  // §6.4.3 a new piece of one triangle
-    set_corner(a, new_record());
-    set_corner(b, new_record());
-    set_corner(v, new_record());
+    set_corner_new(a);
+    set_corner_new(b);
+    set_corner_new(v);
     stack_.push_back(t);
     return true;
   }
@@ -189,25 +191,25 @@ inline bool SpiraleReversi::apply(uint32_t t, uint8_t symbol) {
       const int64_t e = open_edge_into(ja);
       if (e < 0 || static_cast<uint32_t>(e) == jg) return fail("C whose tip has no open edge to zip");
       glue(a, jg);
-      set_corner(v, rec_[ja]);
+      set_corner_root(v, rec_[ja], tip);  // tip stays the root: nothing below merges records
       set_corner(b, rec_[jb]);
       glue(b, static_cast<uint32_t>(e));
       set_corner(a, rec_[corner_next(static_cast<uint32_t>(e))]);
       stack_.back() = t;
-      return close_vertex(rec_[v], v);
+      return close_root(tip, v);
     }
     case kL:  // §6.4.5 attach by the right edge; a is new
       glue(a, jg);
       set_corner(v, rec_[ja]);
       set_corner(b, rec_[jb]);
-      set_corner(a, new_record());
+      set_corner_new(a);
       stack_.back() = t;
       return true;
     case kR:  // §6.4.5 attach by the left edge; b is new
       glue(b, jg);
       set_corner(a, rec_[ja]);
       set_corner(v, rec_[jb]);
-      set_corner(b, new_record());
+      set_corner_new(b);
       stack_.back() = t;
       return true;
     case kS: {  // §6.4.5 join the top two pieces: right child on top, left child below
@@ -222,7 +224,7 @@ inline bool SpiraleReversi::apply(uint32_t t, uint8_t symbol) {
       set_corner(b, rec_[jb]);
       set_corner(a, rec_[ka]);
       merge(r1, r2);  // §6.4.5 the two records of the tip become one
-      set_corner(v, r1);
+      set_corner_root(v, r1, r1);
       stack_.pop_back();
       stack_.back() = t;
       return true;
