@@ -124,6 +124,9 @@ inline bool propagate_patch(const ClosedMesh& mesh, const PatchSet& ps, size_t p
   level.coord.clear();
   level.tris.resize(count);
   global.clear();
+  // A patch's triangles share edges (breadth-first order): at most count + 2 vertices. Sized once, no copies.
+  level.coord.reserve(size_t{count} + 2);
+  global.reserve(size_t{count} + 2);
   uint32_t* loc = local.data();
   auto id_of = [&](uint32_t v) PRM_WASM_INLINE_LAMBDA {
     uint32_t id = loc[v];

@@ -181,16 +181,19 @@ inline bool seed_known(const ClosedMesh& mesh, const std::vector<uint32_t>& vert
   for (uint32_t v = 0; v < mesh.num_vertices; ++v) {
     if (!known[v]) continue;
     const uint32_t c0 = vertex_corner[v];
-    uint32_t c = c0, x = cv[corner_next(c)];
-    do {
+    // The fan walk (fan_next) moves c to prev(d), d = opp[prev(c)]: the next neighbour is the vertex of next(prev(d))
+    // = d, the walk is back at c0 when d = next(c0), and the next step's prev(prev(d)) is next(d). k is prev(c).
+    const uint32_t end = corner_next(c0);
+    uint32_t x = cv[end], k = corner_prev(c0);
+    for (;;) {
       if (mark[x] == v) return false;
       mark[x] = v;
       order.push_neighbour(x);
-      // fan_next: c becomes prev(d), d = opp[prev(c)]; its next corner is d, whose vertex is the next neighbour.
-      const uint32_t d = static_cast<uint32_t>(opp[corner_prev(c)]);
-      c = corner_prev(d);
+      const uint32_t d = static_cast<uint32_t>(opp[k]);
+      if (d == end) break;
       x = cv[d];
-    } while (c != c0);
+      k = corner_next(d);
+    }
   }
   return true;
 }
