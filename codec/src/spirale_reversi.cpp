@@ -91,19 +91,6 @@ uint32_t SpiraleReversi::seam_walk(uint32_t c0) {
   return forward == 2 ? walk(corner_prev) & 1u : forward;
 }
 
-// §6.4.8 Closing a vertex gives it the next id, counting down from the number of vertices, so that ids end up in
-// forward order of discovery (§6.6).
-bool SpiraleReversi::close_root(uint32_t r, uint32_t c) {
-  Record& x = records_[r];
-  if (x.id >= 0) return fail("a vertex is closed twice");
-  if (closed_ >= num_vertices_) return fail("more vertices closed than the component sizes allow");
-  x.id = static_cast<int32_t>(num_vertices_ - 1 - closed_);
-  x.odd = x.count != 6;
-  ++closed_;
-  if (kSeamShortcut && x.odd && seam_tracked_) note_odd(c, r);
-  return true;
-}
-
 // Rotates about the vertex of c across glued edges and sets odd_near of the two other corners' records of every
 // triangle met. The rotation meets every corner of r only if it closes after exactly count(r) triangles
 // (corners of one record are joined only through glued edges, §6.4.2); otherwise tracking stops.
