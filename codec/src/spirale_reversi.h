@@ -167,6 +167,10 @@ class SpiraleReversi {
   bool non_manifold_ = false;
 };
 
+// apply and close_root are defined here and forced inline (apply into the decoder's symbol loop, clers_decode.cpp,
+// its one call there): natively 2.1% fewer instructions per decode than the calls (callgrind, web horse;
+// bench/README.md "hdecode5").
+
 // §6.4.8 Closing a vertex gives it the next id, counting down from the number of vertices, so that ids end up in
 // forward order of discovery (§6.6).
 PRM_ALWAYS_INLINE bool SpiraleReversi::close_root(uint32_t r, uint32_t c) {
@@ -180,8 +184,6 @@ PRM_ALWAYS_INLINE bool SpiraleReversi::close_root(uint32_t r, uint32_t c) {
   return true;
 }
 
-// Defined here and forced inline into the decoder's symbol loop (clers_decode.cpp), its one call there: natively
-// 1.5% fewer instructions per decode than the call (callgrind, web horse; bench/README.md "hdecode5").
 // §6.4.3-6.4.5 One symbol applied to triangle t (corners 3t: a, 3t+1: b, 3t+2: v; gate a->b, right edge b->v,
 // left edge v->a).
 PRM_ALWAYS_INLINE bool SpiraleReversi::apply(uint32_t t, uint8_t symbol) {
