@@ -21,7 +21,7 @@
 #endif
 
 // PRM_NATIVE_INLINE: forced inline natively, kept out of line in the wasm module (Spirale Reversi's apply and
-// close_root: 2.1% fewer native instructions; inlined in the module, forced or by clang's own choice from the header,
+// close_root: 2.0% fewer native instructions; inlined in the module, forced or by clang's own choice from the header,
 // they cost it 500-900 B gzipped).
 #if defined(__wasm__)
 #define PRM_NATIVE_INLINE inline __attribute__((noinline))

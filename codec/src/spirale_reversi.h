@@ -168,7 +168,7 @@ class SpiraleReversi {
 };
 
 // apply and close_root are defined here and forced inline natively (apply into the decoder's symbol loop,
-// clers_decode.cpp, its one call there): 2.1% fewer instructions per decode than the calls (callgrind, web horse;
+// clers_decode.cpp, its one call there): 2.0% fewer instructions per decode than the calls (callgrind, web horse;
 // bench/README.md "hdecode5"). Out of line in the wasm module (always_inline.h).
 
 // §6.4.8 Closing a vertex gives it the next id, counting down from the number of vertices, so that ids end up in
