@@ -36,8 +36,10 @@ Status write_connectivity(const ConnectivityPlan& plan, bool seam_context, std::
 
 // §6.3-6.4 Reads the section at stream offset `offset`. `header_vertices` / `header_triangles` are the header's
 // counts of the output mesh (dummies removed), checked against what the section decodes to. With dummies, also
-// fills mesh.output_triangles and mesh.old_to_new (§6.7).
+// fills mesh.output_triangles and mesh.old_to_new (§6.7). `valences`: also fill mesh.valence (for §7.3's valence
+// context, Flags bit 0).
 Status read_connectivity(const uint8_t* data, size_t size, uint64_t offset, const DecodeLimits& limits,
-                         uint32_t header_vertices, uint32_t header_triangles, bool seam_context, ClosedMesh& mesh);
+                         uint32_t header_vertices, uint32_t header_triangles, bool seam_context, ClosedMesh& mesh,
+                         bool valences = false);
 
 }  // namespace prm::codec

@@ -142,7 +142,7 @@ Status read_dummies(StreamReader& r, uint32_t header_vertices, ConnectivityField
 // §6.4-6.5 The range-coded CLERS symbols (`clers`, `clers_size` bytes at stream offset `clers_offset`), decoded by
 // Spirale Reversi in backward order into the closed mesh's triangles and opposite corners.
 Status decode_symbols(const uint8_t* clers, size_t clers_size, uint64_t clers_offset, const ConnectivityFields& f,
-                      bool seam_context, ClosedMesh& mesh) {
+                      bool seam_context, bool valences, ClosedMesh& mesh) {
   const uint32_t nt = f.num_triangles, nv = f.num_vertices;
   const uint32_t num_components = static_cast<uint32_t>(f.sizes.size());
   const uint32_t num_handles = static_cast<uint32_t>(f.handles.size());
@@ -197,7 +197,9 @@ Status decode_symbols(const uint8_t* clers, size_t clers_size, uint64_t clers_of
     uint8_t s = kE;
     const uint32_t depth = sr.stack_depth();
     if (depth > 0) {
-      BitModel* m = models->m[clers_context(prev1, prev2, sr.gate_start_count(), seam_context ? sr.gate_start_seam() : 0)];
+      uint32_t seam;
+      const uint32_t count = sr.gate_start(seam_context, seam);
+      BitModel* m = models->m[clers_context(prev1, prev2, count, seam)];
       if (!rc.decode_bit(m[0])) {
         s = kC;
       } else if (!rc.decode_bit(m[1])) {
@@ -217,7 +219,7 @@ Status decode_symbols(const uint8_t* clers, size_t clers_size, uint64_t clers_of
     return rc.failed() ? fail("5.5")
                        : make_status(Error::trailing_bytes, "5.6", clers_offset + rc.consumed(),
                                      "bytes after the last CLERS symbol");
-  if (!sr.finish(mesh.corner_vertex))
+  if (!sr.finish(mesh.corner_vertex, valences ? &mesh.valence : nullptr))
     return make_status(sr.error_is_non_manifold() ? Error::non_manifold_result : Error::bad_connectivity, "6.8",
                        clers_offset, sr.error());
   mesh.num_vertices = nv;
@@ -281,7 +283,8 @@ Status remove_dummies(uint32_t header_triangles, uint64_t at, ClosedMesh& mesh) 
 }  // namespace
 
 Status read_connectivity(const uint8_t* data, size_t size, uint64_t offset, const DecodeLimits& limits,
-                         uint32_t header_vertices, uint32_t header_triangles, bool seam_context, ClosedMesh& mesh) {
+                         uint32_t header_vertices, uint32_t header_triangles, bool seam_context, ClosedMesh& mesh,
+                         bool valences) {
   StreamReader r(data, size, offset);
   ConnectivityFields f;
   PRM_TRY(read_components(r, limits, f));
@@ -301,7 +304,7 @@ Status read_connectivity(const uint8_t* data, size_t size, uint64_t offset, cons
     if (header_triangles != 0) return make_status(Error::bad_connectivity, "6.3", offset, "Triangle_Count mismatch");
     return ok_status();
   }
-  PRM_TRY(decode_symbols(clers, clers_size, clers_offset, f, seam_context, mesh));
+  PRM_TRY(decode_symbols(clers, clers_size, clers_offset, f, seam_context, valences, mesh));
   if (f.dummies.empty()) {
     if (f.num_triangles != header_triangles)
       return make_status(Error::bad_connectivity, "6.7", clers_offset,

@@ -63,7 +63,8 @@ Result<DecodedMesh> decode(const uint8_t* data, size_t size, const DecodeOptions
     const Section* ps = c.find(kSectionPositions);
     ClosedMesh mesh;
     res.status = read_connectivity(data + cs->offset, cs->size, cs->offset, options.limits, h.vertices,
-                                   h.triangles, (h.flags & kFlagClersSeam) != 0, mesh);
+                                   h.triangles, (h.flags & kFlagClersSeam) != 0, mesh,
+                                   (h.flags & kFlagLersValence) != 0);
     if (!res.ok()) return res;
     std::vector<uint32_t> q;
     const Section* is = c.find(kSectionIrregular);

@@ -119,12 +119,23 @@ struct LpTable {
     uint8_t* f = first_set.data();
     for (int s = kLpSets; s-- > 0;)
       if (enabled[s]) f[kLpSetMask[s]] = static_cast<uint8_t>(s);
+#if defined(__wasm__)
+    // The plain loop in the wasm module: the form below costs it 430 B gzipped.
     for (uint32_t stride = 1; stride < n; stride <<= 1)
       for (uint32_t base = 0; base < n; base += 2 * stride)
         for (uint32_t i = base; i < base + stride; ++i) {
           const uint8_t a = f[i], b = f[i + stride];
           f[i + stride] = a < b ? a : b;
         }
+#else
+    // The two halves of each block do not overlap: said with __restrict, the inner loop is vectorized.
+    for (uint32_t stride = 1; stride < n; stride <<= 1)
+      for (uint32_t base = 0; base < n; base += 2 * stride) {
+        const uint8_t* __restrict lo = f + base;
+        uint8_t* __restrict hi = f + base + stride;
+        for (uint32_t i = 0; i < stride; ++i) hi[i] = lo[i] < hi[i] ? lo[i] : hi[i];
+      }
+#endif
   }
 };
 

@@ -24,7 +24,10 @@ Status read_irregular_triangles(const uint8_t* data, size_t size, uint64_t offse
     return make_status(rc.failed() ? Error::truncated : Error::bad_section, "7.2", offset + rc.consumed(),
                        "traversal count out of range");
   std::vector<uint8_t> discovered(nt, 0);
-  const std::vector<uint8_t> valence = valence_context ? vertex_valences(mesh) : std::vector<uint8_t>{};
+  // §7.3 The valences the connectivity counted, else counted here.
+  const bool counted = mesh.valence.size() == mesh.num_vertices;
+  const std::vector<uint8_t> own = valence_context && !counted ? vertex_valences(mesh) : std::vector<uint8_t>{};
+  const std::vector<uint8_t>& valence = !valence_context ? own : counted ? mesh.valence : own;
   std::vector<uint32_t> stack;
   const std::vector<uint8_t> none;
   int history[2] = {0, 0};

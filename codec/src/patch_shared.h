@@ -124,6 +124,9 @@ inline bool propagate_patch(const ClosedMesh& mesh, const PatchSet& ps, size_t p
   level.coord.clear();
   level.tris.resize(count);
   global.clear();
+  // A patch's triangles share edges (breadth-first order): at most count + 2 vertices. Sized once, no copies.
+  level.coord.reserve(size_t{count} + 2);
+  global.reserve(size_t{count} + 2);
   uint32_t* loc = local.data();
   auto id_of = [&](uint32_t v) PRM_WASM_INLINE_LAMBDA {
     uint32_t id = loc[v];
@@ -137,7 +140,7 @@ inline bool propagate_patch(const ClosedMesh& mesh, const PatchSet& ps, size_t p
   };
   auto assign = [&](uint32_t id, const std::array<int64_t, 2>& c) {
     std::array<int64_t, 2>& at = level.coord[id];
-    if (at[0] != kUnplaced) return at == c;
+    if (at[0] != kUnplaced) return at[0] == c[0] && at[1] == c[1];  // (std::array's == is a memcmp call)
     at = c;
     return true;
   };
@@ -155,8 +158,9 @@ inline bool propagate_patch(const ClosedMesh& mesh, const PatchSet& ps, size_t p
     }
     // Breadth-first patch order: every later triangle shares an edge with an earlier one.
     auto placed = [&](uint32_t id) { return level.coord[id][0] != kUnplaced; };
-    int k = 0;
-    while (k < 3 && !(placed(t[k]) && placed(t[(k + 1) % 3]))) ++k;
+    // The first k in 0, 1, 2 whose edge t[k] -> t[k + 1] has both ends placed.
+    const bool p0 = placed(t[0]), p1 = placed(t[1]), p2 = placed(t[2]);
+    const int k = p0 && p1 ? 0 : p1 && p2 ? 1 : p2 && p0 ? 2 : 3;
     if (k == 3) return false;
     const uint32_t x = t[k], y = t[(k + 1) % 3], z = t[(k + 2) % 3];
     if (!assign(z, third_corner(level.coord[x], level.coord[y], positive))) return false;

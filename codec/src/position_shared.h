@@ -181,14 +181,19 @@ inline bool seed_known(const ClosedMesh& mesh, const std::vector<uint32_t>& vert
   for (uint32_t v = 0; v < mesh.num_vertices; ++v) {
     if (!known[v]) continue;
     const uint32_t c0 = vertex_corner[v];
-    uint32_t c = c0;
-    do {
-      const uint32_t x = cv[corner_next(c)];
+    // The fan walk (fan_next) moves c to prev(d), d = opp[prev(c)]: the next neighbour is the vertex of next(prev(d))
+    // = d, the walk is back at c0 when d = next(c0), and the next step's prev(prev(d)) is next(d). k is prev(c).
+    const uint32_t end = corner_next(c0);
+    uint32_t x = cv[end], k = corner_prev(c0);
+    for (;;) {
       if (mark[x] == v) return false;
       mark[x] = v;
       order.push_neighbour(x);
-      c = fan_next(opp, c);
-    } while (c != c0);
+      const uint32_t d = static_cast<uint32_t>(opp[k]);
+      if (d == end) break;
+      x = cv[d];
+      k = corner_next(d);
+    }
   }
   return true;
 }

@@ -36,27 +36,31 @@ bool SpiraleReversi::fail(const char* message) {
 // §6.4.2 Rotation about the vertex of corner c across glued edges, away from c's outgoing edge, until an open edge
 // ending at that vertex is met. Returns the corner opposite that open edge, or -1 if the fan closes (or the walk
 // exceeds the number of corners, which only a corrupt state can cause).
+// Each step moves c to next(d), d = opp[next(c)]: the rotation is back at c when d = prev(c), and the next step's
+// corner next(next(d)) is prev(d).
 int64_t SpiraleReversi::open_edge_into(uint32_t c) {
-  const uint32_t start = c;
-  for (uint64_t steps = 0; steps <= 3 * uint64_t{decoded_} + 3; ++steps) {
-    const uint32_t k = corner_next(c);
+  const int32_t stop = static_cast<int32_t>(corner_prev(c));
+  const uint64_t bound = 3 * uint64_t{decoded_} + 3;
+  uint32_t k = corner_next(c);
+  for (uint64_t steps = 0; steps <= bound; ++steps) {
     const int32_t d = opp_[k];
     if (d < 0) return k;
-    c = corner_next(static_cast<uint32_t>(d));
-    if (c == start) return -1;
+    if (d == stop) return -1;
+    k = corner_prev(static_cast<uint32_t>(d));
   }
   return -1;
 }
 
 // The mirror: rotation across outgoing edges until an open edge leaving the vertex of c.
 int64_t SpiraleReversi::open_edge_out_of(uint32_t c) {
-  const uint32_t start = c;
-  for (uint64_t steps = 0; steps <= 3 * uint64_t{decoded_} + 3; ++steps) {
-    const uint32_t k = corner_prev(c);
+  const int32_t stop = static_cast<int32_t>(corner_next(c));
+  const uint64_t bound = 3 * uint64_t{decoded_} + 3;
+  uint32_t k = corner_prev(c);
+  for (uint64_t steps = 0; steps <= bound; ++steps) {
     const int32_t d = opp_[k];
     if (d < 0) return k;
-    c = corner_prev(static_cast<uint32_t>(d));
-    if (c == start) return -1;
+    if (d == stop) return -1;
+    k = corner_next(static_cast<uint32_t>(d));
   }
   return -1;
 }
@@ -65,11 +69,7 @@ int64_t SpiraleReversi::open_edge_out_of(uint32_t c) {
 // first j itself and up to kSeamWalk triangles rotating across the edge opposite next(c), then up to kSeamWalk
 // rotating across the edge opposite prev(c) from j; each walk stops at an open edge or back at j. Seam is 1 if the
 // vertex of a visited triangle's corner next(c) or prev(c) is closed and has a triangle count other than 6.
-uint32_t SpiraleReversi::gate_start_seam() {
-  if (stack_.empty()) return 0;
-  const uint32_t c0 = 3 * stack_.back();
-  // No odd record shares a triangle with the gate's start vertex (Record::odd_near): Seam is 0 without the walk.
-  if (kSeamShortcut && seam_tracked_ && records_[find(rec_[c0])].odd_near == 0) return 0;
+uint32_t SpiraleReversi::seam_walk(uint32_t c0) {
   auto odd = [&](uint32_t c) { return records_[find(rec_[c])].odd != 0; };
   // One side: 1 odd vertex found, 0 the fan closed (every triangle seen), 2 an open edge or the bound. Crossing the
   // edge opposite turn(c) into the triangle of d, the next triangle's two other vertices are the far end of that
@@ -91,20 +91,6 @@ uint32_t SpiraleReversi::gate_start_seam() {
   return forward == 2 ? walk(corner_prev) & 1u : forward;
 }
 
-// §6.4.8 Closing a vertex gives it the next id, counting down from the number of vertices, so that ids end up in
-// forward order of discovery (§6.6).
-bool SpiraleReversi::close_vertex(uint32_t record, uint32_t c) {
-  const uint32_t r = find(record);
-  Record& x = records_[r];
-  if (x.id >= 0) return fail("a vertex is closed twice");
-  if (closed_ >= num_vertices_) return fail("more vertices closed than the component sizes allow");
-  x.id = static_cast<int32_t>(num_vertices_ - 1 - closed_);
-  x.odd = x.count != 6;
-  ++closed_;
-  if (kSeamShortcut && x.odd && seam_tracked_) note_odd(c, r);
-  return true;
-}
-
 // Rotates about the vertex of c across glued edges and sets odd_near of the two other corners' records of every
 // triangle met. The rotation meets every corner of r only if it closes after exactly count(r) triangles
 // (corners of one record are joined only through glued edges, §6.4.2); otherwise tracking stops.
@@ -123,72 +109,6 @@ void SpiraleReversi::note_odd(uint32_t c, uint32_t r) {
     k = corner_next(static_cast<uint32_t>(d));
   } while (k != c);
   if (n != count) seam_tracked_ = false;
-}
-
-// §6.4.3-6.4.5 One symbol applied to triangle t (corners 3t: a, 3t+1: b, 3t+2: v; gate a->b, right edge b->v,
-// left edge v->a).
-bool SpiraleReversi::apply(uint32_t t, uint8_t symbol) {
-  add_triangle(t);
-  const uint32_t a = 3 * t, b = a + 1, v = a + 2;
-  ++decoded_;
-  if (symbol == kE) {  // §6.4.3 a new piece of one triangle
-    set_corner(a, new_record());
-    set_corner(b, new_record());
-    set_corner(v, new_record());
-    stack_.push_back(t);
-    return true;
-  }
-  if (stack_.empty()) return fail("a C, L, R or S symbol with no piece to attach to");
-  const uint32_t j = stack_.back();
-  const uint32_t ja = 3 * j, jb = ja + 1, jg = ja + 2;  // j's gate is ja->jb, opposite jg
-  switch (symbol) {
-    case kC: {  // §6.4.4 attach by the right edge, then zip the left edge around the tip
-      const uint32_t tip = find(rec_[ja]);
-      if (records_[tip].id >= 0) return fail("C at a closed vertex");
-      const int64_t e = open_edge_into(ja);
-      if (e < 0 || static_cast<uint32_t>(e) == jg) return fail("C whose tip has no open edge to zip");
-      glue(a, jg);
-      set_corner(v, rec_[ja]);
-      set_corner(b, rec_[jb]);
-      glue(b, static_cast<uint32_t>(e));
-      set_corner(a, rec_[corner_next(static_cast<uint32_t>(e))]);
-      stack_.back() = t;
-      return close_vertex(rec_[v], v);
-    }
-    case kL:  // §6.4.5 attach by the right edge; a is new
-      glue(a, jg);
-      set_corner(v, rec_[ja]);
-      set_corner(b, rec_[jb]);
-      set_corner(a, new_record());
-      stack_.back() = t;
-      return true;
-    case kR:  // §6.4.5 attach by the left edge; b is new
-      glue(b, jg);
-      set_corner(a, rec_[ja]);
-      set_corner(v, rec_[jb]);
-      set_corner(b, new_record());
-      stack_.back() = t;
-      return true;
-    case kS: {  // §6.4.5 join the top two pieces: right child on top, left child below
-      if (stack_.size() < 2) return fail("S with fewer than two pieces");
-      const uint32_t k = stack_[stack_.size() - 2];
-      const uint32_t ka = 3 * k, kb = ka + 1, kg = ka + 2;
-      const uint32_t r1 = find(rec_[ja]), r2 = find(rec_[kb]);
-      if (r1 == r2) return fail("S joins a vertex to itself");
-      if (records_[r1].id >= 0 || records_[r2].id >= 0) return fail("S at a closed vertex");
-      glue(a, jg);
-      glue(b, kg);
-      set_corner(b, rec_[jb]);
-      set_corner(a, rec_[ka]);
-      merge(r1, r2);  // §6.4.5 the two records of the tip become one
-      set_corner(v, r1);
-      stack_.pop_back();
-      stack_.back() = t;
-      return true;
-    }
-    default:
-      return fail("symbol out of range");
-  }
 }
 
 // §6.4.6 An S whose left branch was consumed by its right branch: attach the right edge to the top piece, and glue
@@ -216,7 +136,7 @@ bool SpiraleReversi::apply_handle(uint32_t t, const HandleEvent& event, uint32_t
   set_corner(b, rec_[jb]);
   set_corner(a, rec_[corner_next(pc)]);
   merge(r1, rq);
-  set_corner(v, r1);
+  set_corner_root(v, r1, r1);
   stack_.back() = t;
   return true;
 }
@@ -248,13 +168,13 @@ bool SpiraleReversi::close_component(uint32_t t0) {
   // §6.6 ids in forward order: r, q, p are the last three closed in reverse.
   const uint32_t rr = find(rec_[r]), rq = find(rec_[q]), rp = find(rec_[p]);
   if (rr == rq || rq == rp || rr == rp) return fail("the first triangle of a component is degenerate");
-  return close_vertex(rr, r) && close_vertex(rq, q) && close_vertex(rp, p);
+  return close_root(rr, r) && close_root(rq, q) && close_root(rp, p);
 }
 
 // §6.4.8 / §6.8 Final ids and validation: every edge glued, every record closed, and the result an oriented closed
 // 2-manifold (each vertex one cycle of triangles, no triangle using a vertex twice, no two edges joining the same
 // pair of vertices).
-bool SpiraleReversi::finish(std::vector<uint32_t>& corner_vertex) {
+bool SpiraleReversi::finish(std::vector<uint32_t>& corner_vertex, std::vector<uint8_t>* valence) {
   if (!stack_.empty()) return fail("pieces left on the stack");
   if (closed_ != num_vertices_) return fail("vertex count differs from the component sizes and handles");
   // Vertex id of every record, then of every corner.
@@ -276,6 +196,13 @@ bool SpiraleReversi::finish(std::vector<uint32_t>& corner_vertex) {
     for (size_t i = c; i < c + 3; ++i) rec[i] = static_cast<uint32_t>(records_[rec[i]].id);  // records become ids
     if (rec[c] == rec[c + 1] || rec[c + 1] == rec[c + 2] || rec[c] == rec[c + 2])
       return fail("a decoded triangle uses a vertex twice");
+  }
+  // A root's count is the number of corners set to its records (set_corner, merge): its vertex's triangle count.
+  if (valence) {
+    valence->assign(num_vertices_, 0);
+    for (uint32_t r = 0; r < num_records; ++r)
+      if (records_[r].parent == r)
+        (*valence)[static_cast<uint32_t>(records_[r].id)] = static_cast<uint8_t>(std::min<uint32_t>(records_[r].count, 255));
   }
   corner_vertex.swap(rec_.all());
   rec_.reset(0, 0);

@@ -19,6 +19,7 @@
 
 #include "always_inline.h"
 #include "clers_shared.h"
+#include "corner_table.h"
 #include "tail_table.h"
 
 namespace prm::codec {
@@ -53,7 +54,15 @@ class SpiraleReversi {
     return stack_.empty() ? 0 : records_[find(rec_[3 * stack_.back()])].count;
   }
   // §6.5.2 Seam: 1 if a closed vertex of the decoded fan of the gate's start vertex has a valence other than 6.
-  uint32_t gate_start_seam();
+  uint32_t gate_start_seam() { return stack_.empty() ? 0 : seam_of(3 * stack_.back(), find(rec_[3 * stack_.back()])); }
+  // §6.5.2 Both inputs at once, with one lookup of the gate's start record (the stack is not empty): Count, and
+  // Seam if `seam_context` (else 0). The same values as gate_start_count() and gate_start_seam().
+  uint32_t gate_start(bool seam_context, uint32_t& seam) {
+    const uint32_t c0 = 3 * stack_.back();
+    const uint32_t r = find(rec_[c0]);
+    seam = seam_context ? seam_of(c0, r) : 0;
+    return records_[r].count;
+  }
 
   // §6.4.3-6.4.7 One step each, for t = T - 1 down to 0 in turn; false (with error() set) when the operation is
   // impossible.
@@ -61,8 +70,9 @@ class SpiraleReversi {
   bool apply_handle(uint32_t t, const HandleEvent& event, uint32_t component_end);
   bool close_component(uint32_t t0);
 
-  // §6.4.8 Final vertex ids per corner (3 per triangle, canonical corner order) and validation (§6.8).
-  bool finish(std::vector<uint32_t>& corner_vertex);
+  // §6.4.8 Final vertex ids per corner (3 per triangle, canonical corner order) and validation (§6.8). `valence`
+  // (optional): per vertex id, its triangle count capped at 255 (§7.3's valence context), from the records' counts.
+  bool finish(std::vector<uint32_t>& corner_vertex, std::vector<uint8_t>* valence = nullptr);
 
   // All the opposite corners, once every triangle is applied.
   const std::vector<int32_t>& opposites() const { return opp_.all(); }
@@ -78,14 +88,16 @@ class SpiraleReversi {
     }
     return r;
   }
-  uint32_t new_record() {
+  // Corner c gets a new record (its count 1: set_corner of a new record).
+  void set_corner_new(uint32_t c) {
     const uint32_t r = static_cast<uint32_t>(records_.size());
-    records_.push_back({r, 0, -1, 0, 0});
-    return r;
+    records_.push_back({r, 1, -1, 0, 0});
+    rec_[c] = r;
   }
-  PRM_WASM_INLINE void set_corner(uint32_t c, uint32_t record) {
+  PRM_WASM_INLINE void set_corner(uint32_t c, uint32_t record) { set_corner_root(c, record, find(record)); }
+  // set_corner when the caller knows find(record) = r.
+  PRM_WASM_INLINE void set_corner_root(uint32_t c, uint32_t record, uint32_t r) {
     rec_[c] = record;
-    const uint32_t r = find(record);
     Record& x = records_[r];
     ++x.count;
     if (x.id >= 0) {
@@ -97,8 +109,15 @@ class SpiraleReversi {
     opp_[c1] = static_cast<int32_t>(c2);
     opp_[c2] = static_cast<int32_t>(c1);
   }
-  // Closes the vertex of record `record`, that of corner c.
-  bool close_vertex(uint32_t record, uint32_t c);
+  // §6.5.2 Seam from corner c0 of the top piece's triangle, whose root record is r: 0 without the walk when no odd
+  // record shares a triangle with r (Record::odd_near), else the walk (seam_walk).
+  uint32_t seam_of(uint32_t c0, uint32_t r) {
+    if (kSeamShortcut && seam_tracked_ && records_[r].odd_near == 0) return 0;
+    return seam_walk(c0);
+  }
+  uint32_t seam_walk(uint32_t c0);
+  // Closes the vertex of root record r, that of corner c.
+  bool close_root(uint32_t r, uint32_t c);
   // §6.5.2 The vertex of corner c (root record r) is closed with a triangle count other than 6: sets odd_near of
   // every record that shares a triangle with it.
   void note_odd(uint32_t c, uint32_t r);
@@ -126,7 +145,7 @@ class SpiraleReversi {
   TailTable<uint32_t> rec_;
   // §6.4.1 A vertex record: its union-find parent, and for a root its triangle count, its vertex id once closed (-1
   // before), and whether it is closed with a triangle count other than 6 (§6.5.2 Seam; kept with count and id: a
-  // root's count and id change only in set_corner and close_vertex, and records merge only while open). One struct,
+  // root's count and id change only in set_corner and close_root, and records merge only while open). One struct,
   // so that a find and the fields it leads to share a cache line.
   //
   // odd_near (§6.5.2 Seam without the walk): for a root, 1 if an odd record may share a triangle with one of its
@@ -147,5 +166,88 @@ class SpiraleReversi {
   std::string error_;
   bool non_manifold_ = false;
 };
+
+// apply and close_root are defined here and forced inline natively (apply into the decoder's symbol loop,
+// clers_decode.cpp, its one call there): 2.0% fewer instructions per decode than the calls (callgrind, web horse;
+// bench/README.md "hdecode5"). Out of line in the wasm module (always_inline.h).
+
+// §6.4.8 Closing a vertex gives it the next id, counting down from the number of vertices, so that ids end up in
+// forward order of discovery (§6.6).
+PRM_NATIVE_INLINE bool SpiraleReversi::close_root(uint32_t r, uint32_t c) {
+  Record& x = records_[r];
+  if (x.id >= 0) return fail("a vertex is closed twice");
+  if (closed_ >= num_vertices_) return fail("more vertices closed than the component sizes allow");
+  x.id = static_cast<int32_t>(num_vertices_ - 1 - closed_);
+  x.odd = x.count != 6;
+  ++closed_;
+  if (kSeamShortcut && x.odd && seam_tracked_) note_odd(c, r);
+  return true;
+}
+
+// §6.4.3-6.4.5 One symbol applied to triangle t (corners 3t: a, 3t+1: b, 3t+2: v; gate a->b, right edge b->v,
+// left edge v->a).
+PRM_NATIVE_INLINE bool SpiraleReversi::apply(uint32_t t, uint8_t symbol) {
+  add_triangle(t);
+  const uint32_t a = 3 * t, b = a + 1, v = a + 2;
+  ++decoded_;
+  if (symbol == kE) {  // §6.4.3 a new piece of one triangle
+    set_corner_new(a);
+    set_corner_new(b);
+    set_corner_new(v);
+    stack_.push_back(t);
+    return true;
+  }
+  if (stack_.empty()) return fail("a C, L, R or S symbol with no piece to attach to");
+  const uint32_t j = stack_.back();
+  const uint32_t ja = 3 * j, jb = ja + 1, jg = ja + 2;  // j's gate is ja->jb, opposite jg
+  switch (symbol) {
+    case kC: {  // §6.4.4 attach by the right edge, then zip the left edge around the tip
+      const uint32_t tip = find(rec_[ja]);
+      if (records_[tip].id >= 0) return fail("C at a closed vertex");
+      const int64_t e = open_edge_into(ja);
+      if (e < 0 || static_cast<uint32_t>(e) == jg) return fail("C whose tip has no open edge to zip");
+      glue(a, jg);
+      set_corner_root(v, rec_[ja], tip);  // tip stays the root: nothing below merges records
+      set_corner(b, rec_[jb]);
+      glue(b, static_cast<uint32_t>(e));
+      set_corner(a, rec_[corner_next(static_cast<uint32_t>(e))]);
+      stack_.back() = t;
+      return close_root(tip, v);
+    }
+    case kL:  // §6.4.5 attach by the right edge; a is new
+      glue(a, jg);
+      set_corner(v, rec_[ja]);
+      set_corner(b, rec_[jb]);
+      set_corner_new(a);
+      stack_.back() = t;
+      return true;
+    case kR:  // §6.4.5 attach by the left edge; b is new
+      glue(b, jg);
+      set_corner(a, rec_[ja]);
+      set_corner(v, rec_[jb]);
+      set_corner_new(b);
+      stack_.back() = t;
+      return true;
+    case kS: {  // §6.4.5 join the top two pieces: right child on top, left child below
+      if (stack_.size() < 2) return fail("S with fewer than two pieces");
+      const uint32_t k = stack_[stack_.size() - 2];
+      const uint32_t ka = 3 * k, kb = ka + 1, kg = ka + 2;
+      const uint32_t r1 = find(rec_[ja]), r2 = find(rec_[kb]);
+      if (r1 == r2) return fail("S joins a vertex to itself");
+      if (records_[r1].id >= 0 || records_[r2].id >= 0) return fail("S at a closed vertex");
+      glue(a, jg);
+      glue(b, kg);
+      set_corner(b, rec_[jb]);
+      set_corner(a, rec_[ka]);
+      merge(r1, r2);  // §6.4.5 the two records of the tip become one
+      set_corner_root(v, r1, r1);
+      stack_.pop_back();
+      stack_.back() = t;
+      return true;
+    }
+    default:
+      return fail("symbol out of range");
+  }
+}
 
 }  // namespace prm::codec
