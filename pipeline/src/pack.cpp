@@ -55,10 +55,45 @@ struct SearchContext {
   std::vector<double> relief_grid_scale;  // PackOptions::adaptive: per relief of `layout` (empty: one grid)
 };
 
-// One bit depth and step scale: repair (done by the caller), remesh, encode. `measured`: false when the chosen stream,
-// measured at full density, misses what the search's sparser samples promised (the caller repeats at full density).
-PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bits, double step_scale,
-                   double initial_grid, bool* measured = nullptr) {
+remesh::ErrorEstimate measure_with(const MetroReference& r, const Mesh& m) {
+  const DistanceReport d = r.compare(m);
+  return remesh::ErrorEstimate{d.rel(d.rms), d.rel(d.max)};
+}
+
+// The stream of a candidate with options o, and the error of its decoded mesh (`measure`).
+// zero_area: the decoded mesh's triangles of zero area (the chosen heights can put a corner on a line);
+// coincident: its vertices that share their point with another.
+template <class Measure>
+remesh::ErrorEstimate encode_and_measure(const remesh::PrmMesh& prm, const codec::PrmOptions& o,
+                                         codec::EncodeReport* report, std::vector<uint8_t>* stream,
+                                         const Measure& measure, size_t* zero_area = nullptr,
+                                         size_t* coincident = nullptr) {
+  auto encoded = encode_prm_mesh(prm, report, o);
+  if (!encoded.ok())
+    throw InputError("the piecewise regular mesh could not be encoded (a remesher or codec bug): " +
+                     encoded.status.message + " (spec §" + encoded.status.spec_section + ")");
+  auto decoded = codec::decode(encoded.value.data(), encoded.value.size());
+  if (!decoded.ok()) throw InputError("the encoder's stream does not decode (a codec bug): " + decoded.status.message);
+  if (zero_area) *zero_area = count_zero_area_triangles(decoded.value);
+  if (coincident) *coincident = count_coincident_vertices(decoded.value);
+  const Mesh mesh = to_mesh(decoded.value);
+  if (stream) *stream = std::move(encoded.value);
+  return measure(mesh);
+}
+
+// One bit depth and step scale remeshed and encoded (heights rounded, or PackOptions::height_lambda): what
+// finish_at() needs to choose the heights' lambda and check the stream at full density.
+struct Remeshed {
+  PackResult out;
+  double target = 0, max_target = 0;  // the search's RMS and max targets (remesh::RemeshOptions)
+  // The full / sparse ratio of the last grid measured both ways (1: none was), which scales the lambda
+  // bisection's sparse estimates.
+  double sparse_bias = 1;
+};
+
+// One bit depth and step scale: repair (done by the caller), remesh, encode with rounded heights.
+Remeshed remesh_at(const SearchContext& ctx, const PackOptions& options, int bits, double step_scale,
+                   double initial_grid) {
   const Mesh& source = ctx.source;
   const MetroReference& reference = ctx.search;
   PackResult out;
@@ -108,21 +143,10 @@ PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bit
   // The error of a decoded candidate: the search's samples decide unless they fall within kSparseBand of the target,
   // where the full density decides (the sparser samples weigh the vertices more: +0.5% at 4 per face, +4% at 2 on
   // the horse), so that every decision is the one the full density would make.
-  auto measure_with = [](const MetroReference& r, const Mesh& m) {
-    const DistanceReport d = r.compare(m);
-    return remesh::ErrorEstimate{d.rel(d.rms), d.rel(d.max)};
-  };
-  // The lambda bisection keeps the sparse estimates, scaled by the full / sparse ratio of the last grid measured both
-  // ways (the final full-density check below corrects what that misses).
-  bool in_band_at_full_density = true;
   double sparse_bias = 1;
   auto measure = [&](const Mesh& m) {
     remesh::ErrorEstimate e = measure_with(reference, m);
     if (&reference == &ctx.full) return e;
-    if (!in_band_at_full_density) {
-      e.rms *= sparse_bias;
-      return e;
-    }
     const bool max_in_band = ro.max_error > 0 && e.max >= kSparseBand[0] * ro.max_error;
     if ((e.rms < kSparseBand[0] * ro.target_error || e.rms > kSparseBand[1] * ro.target_error) && !max_in_band)
       return e;
@@ -130,27 +154,9 @@ PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bit
     if (e.rms > 0) sparse_bias = full.rms / e.rms;
     return full;
   };
-  // The stream of a candidate with options o, and the error of its decoded mesh.
-  // zero_area: the decoded mesh's triangles of zero area (the chosen heights can put a corner on a line);
-  // coincident: its vertices that share their point with another.
-  auto encode_and_measure = [&](const remesh::PrmMesh& prm, const codec::PrmOptions& o, codec::EncodeReport* report,
-                                std::vector<uint8_t>* stream, size_t* zero_area = nullptr,
-                                const MetroReference* against = nullptr, size_t* coincident = nullptr) {
-    auto encoded = encode_prm_mesh(prm, report, o);
-    if (!encoded.ok())
-      throw InputError("the piecewise regular mesh could not be encoded (a remesher or codec bug): " +
-                       encoded.status.message + " (spec §" + encoded.status.spec_section + ")");
-    auto decoded = codec::decode(encoded.value.data(), encoded.value.size());
-    if (!decoded.ok()) throw InputError("the encoder's stream does not decode (a codec bug): " + decoded.status.message);
-    if (zero_area) *zero_area = count_zero_area_triangles(decoded.value);
-    if (coincident) *coincident = count_coincident_vertices(decoded.value);
-    const Mesh mesh = to_mesh(decoded.value);
-    if (stream) *stream = std::move(encoded.value);
-    return against ? measure_with(*against, mesh) : measure(mesh);
-  };
   auto error = [&](const remesh::PrmMesh& prm) {
     ProgressJob::advance_round();
-    if (po.height_lambda > 0) return encode_and_measure(prm, po, nullptr, nullptr);
+    if (po.height_lambda > 0) return encode_and_measure(prm, po, nullptr, nullptr, measure);
     const Mesh& candidate = prm.mesh;
     Mesh q;
     q.triangles = candidate.triangles;
@@ -174,12 +180,27 @@ PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bit
                      encoded.status.message + " (spec §" + encoded.status.spec_section + ")");
   out.stream = std::move(encoded.value);
   out.codec_options = po;
+  return Remeshed{std::move(out), ro.target_error, ro.max_error, sparse_bias};
+}
+
+// The heights of a remeshed attempt: the lambda bisection (its sparse estimates scaled by rm.sparse_bias), then the
+// check at full density. `measured`: false when the chosen stream, measured at full density, misses what the
+// search's sparser samples promised (the caller repeats at full density).
+PackResult finish_at(const SearchContext& ctx, const PackOptions& options, Remeshed rm, bool* measured = nullptr) {
+  PackResult out = std::move(rm.out);
+  const codec::PrmOptions po = out.codec_options;
+  const int bits = out.bits;
+  const double step_scale = out.step_scale;
+  auto measure = [&](const Mesh& m) {
+    remesh::ErrorEstimate e = measure_with(ctx.search, m);
+    if (&ctx.search != &ctx.full) e.rms *= rm.sparse_bias;
+    return e;
+  };
   // The error left below the target buys smaller residuals: the largest lambda that still meets it.
   if (options.optimize_heights && options.height_lambda <= 0 && options.target_error > 0) {
     const auto t1 = std::chrono::steady_clock::now();
     ProgressJob::stage("heights");
     ProgressJob::rounds_left(ctx.plan.lambda_rounds + 1);  // and the check at full density
-    in_band_at_full_density = false;
     // The error grows with lambda: bisection for the last one that meets the target (in at most plan.lambda_rounds).
     int lo = -1, hi = static_cast<int>(std::size(kHeightLambdas));  // lo meets (-1: rounding), hi does not
     // Heights chosen by rate and distortion must not put a vertex on another's point (issue 17): a lambda whose stream
@@ -204,8 +225,8 @@ PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bit
       std::vector<uint8_t> stream;
       size_t zero_area = 0, coincident = 0;
       const remesh::ErrorEstimate e =
-          encode_and_measure(out.remesh.prm, o, &report, &stream, &zero_area, nullptr, &coincident);
-      if (e.rms > ro.target_error || (ro.max_error > 0 && e.max > ro.max_error) || zero_area > 0 ||
+          encode_and_measure(out.remesh.prm, o, &report, &stream, measure, &zero_area, &coincident);
+      if (e.rms > rm.target || (rm.max_target > 0 && e.max > rm.max_target) || zero_area > 0 ||
           coincident > base_coincident) {
         hi = mid;
         continue;
@@ -251,7 +272,8 @@ PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bit
     ProgressJob::rounds_left(1);
     auto full_error = [&](const codec::PrmOptions& o, std::vector<uint8_t>* stream, codec::EncodeReport* report) {
       size_t za = 0;
-      const remesh::ErrorEstimate e = encode_and_measure(out.remesh.prm, o, report, stream, &za, &ctx.full);
+      auto full = [&](const Mesh& m) { return measure_with(ctx.full, m); };
+      const remesh::ErrorEstimate e = encode_and_measure(out.remesh.prm, o, report, stream, full, &za);
       return za > 0 ? remesh::ErrorEstimate{HUGE_VAL, HUGE_VAL} : e;
     };
     const auto decoded = codec::decode(out.stream.data(), out.stream.size());
@@ -292,6 +314,12 @@ PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bit
             out.remesh.prm.frame.to_real(decoded.value.quantized[3 * k + static_cast<size_t>(a)], a);
   }
   return out;
+}
+
+// One bit depth and step scale, remeshed (remesh_at) and its heights chosen (finish_at).
+PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bits, double step_scale,
+                   double initial_grid, bool* measured = nullptr) {
+  return finish_at(ctx, options, remesh_at(ctx, options, bits, step_scale, initial_grid), measured);
 }
 
 // The step of ladder position p (eighths of an octave below the extent): bits ceil(p / 8), scale 2^(j/8).
