@@ -374,8 +374,10 @@ EffortPlan effort_plan(int effort) {
 
 namespace {
 
-// PackMode::prm. input_reference: the input's Metro reference (options.metro_samples), used when no repair is needed.
-PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroReference* input_reference) {
+// PackMode::prm. input_reference: the input's Metro reference (options.metro_samples), used when no repair is needed;
+// input_check: validate_mesh(input) when the caller has it (null: computed here).
+PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroReference* input_reference,
+                    const MeshReport* input_check) {
   auto t0 = std::chrono::steady_clock::now();
   // The effort applies to the search of the step; a given bit depth or step scale is searched as it always was.
   const EffortPlan plan =
@@ -391,7 +393,7 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
   ProgressJob::stage("repair");
   // The remesher needs a consistently oriented 2-manifold. Its boundary loops stay open (issue 22: a range scan is
   // an open surface), unless fill_holes closes them with the paper's fans (paper §4, the bunny protocol).
-  const MeshReport check = validate_mesh(input);
+  const MeshReport check = input_check ? *input_check : validate_mesh(input);
   Mesh closed;
   RepairReport repair;
   const bool ready = check.clean() && check.manifold() && check.oriented() && (check.closed() || !options.fill_holes);
@@ -624,9 +626,10 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
 // pack_prm on an open surface: its boundary loops are kept (issue 22) unless fill_holes; when the remesher cannot keep
 // them (a broken invariant, std::logic_error), the paper's protocol instead, named in the report
 // (RepairReport::notes) and by boundary_fallback. Never a crash.
-PackResult pack_prm_open(const Mesh& input, const PackOptions& options, const MetroReference* input_reference) {
+PackResult pack_prm_open(const Mesh& input, const PackOptions& options, const MetroReference* input_reference,
+                         const MeshReport* input_check) {
   return detail::pack_keeping_boundary_or_filling(input, options, [&](const Mesh& m, const PackOptions& o) {
-    return pack_prm(m, o, input_reference);
+    return pack_prm(m, o, input_reference, &m == &input ? input_check : nullptr);
   });
 }
 
@@ -743,7 +746,7 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   bool prm_unreachable = false;  // the PRM's failure: TargetNotReached (otherwise InputError)
   try {
-    out = pack_prm_open(input, options, input_reference.get());
+    out = pack_prm_open(input, options, input_reference.get(), &input_check);
     prm.made = true;
   } catch (const remesh::TargetNotReached& e) {
     if (mode == PackMode::prm) throw;
