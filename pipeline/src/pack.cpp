@@ -343,8 +343,9 @@ EffortPlan effort_plan(int effort) {
   // second round changed nothing (the same streams); on the feline it found a larger lambda whose stream is 3.5%
   // smaller. One round saves 0.1-0.7 s CPU there (bench/README.md "pack effort", fifth round).
   // Effort 4 tries two steps as effort 5 does, but chooses the heights' lambda and checks at full density only the
-  // better one (defer_heights): the venus's stream of effort 5 (+0.1% against effort 9, where effort 3 is +7.8%)
-  // for about 3 s CPU more than effort 3 (sixth round).
+  // better one (defer_heights): effort 5's streams on the paper's four models (the venus +0.06% against effort 9,
+  // where effort 3 is +7.8%) for 3-29% less CPU than effort 5 and 1-4.6 s more than effort 3 (bench/README.md
+  // "pack effort", sixth round).
   switch (effort) {
     case 0: p.steps = 1; p.search_samples_per_face = 2; p.lambda_rounds = 1; p.grid_tolerance = 0.15; p.accept_error = 0; break;
     case 1: p.steps = 1; p.search_samples_per_face = 2; p.lambda_rounds = 3; p.grid_tolerance = 0.1; p.accept_error = 0.85; break;
