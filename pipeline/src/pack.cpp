@@ -55,10 +55,45 @@ struct SearchContext {
   std::vector<double> relief_grid_scale;  // PackOptions::adaptive: per relief of `layout` (empty: one grid)
 };
 
-// One bit depth and step scale: repair (done by the caller), remesh, encode. `measured`: false when the chosen stream,
-// measured at full density, misses what the search's sparser samples promised (the caller repeats at full density).
-PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bits, double step_scale,
-                   double initial_grid, bool* measured = nullptr) {
+remesh::ErrorEstimate measure_with(const MetroReference& r, const Mesh& m) {
+  const DistanceReport d = r.compare(m);
+  return remesh::ErrorEstimate{d.rel(d.rms), d.rel(d.max)};
+}
+
+// The stream of a candidate with options o, and the error of its decoded mesh (`measure`).
+// zero_area: the decoded mesh's triangles of zero area (the chosen heights can put a corner on a line);
+// coincident: its vertices that share their point with another.
+template <class Measure>
+remesh::ErrorEstimate encode_and_measure(const remesh::PrmMesh& prm, const codec::PrmOptions& o,
+                                         codec::EncodeReport* report, std::vector<uint8_t>* stream,
+                                         const Measure& measure, size_t* zero_area = nullptr,
+                                         size_t* coincident = nullptr) {
+  auto encoded = encode_prm_mesh(prm, report, o);
+  if (!encoded.ok())
+    throw InputError("the piecewise regular mesh could not be encoded (a remesher or codec bug): " +
+                     encoded.status.message + " (spec §" + encoded.status.spec_section + ")");
+  auto decoded = codec::decode(encoded.value.data(), encoded.value.size());
+  if (!decoded.ok()) throw InputError("the encoder's stream does not decode (a codec bug): " + decoded.status.message);
+  if (zero_area) *zero_area = count_zero_area_triangles(decoded.value);
+  if (coincident) *coincident = count_coincident_vertices(decoded.value);
+  const Mesh mesh = to_mesh(decoded.value);
+  if (stream) *stream = std::move(encoded.value);
+  return measure(mesh);
+}
+
+// One bit depth and step scale remeshed and encoded (heights rounded, or PackOptions::height_lambda): what
+// finish_at() needs to choose the heights' lambda and check the stream at full density.
+struct Remeshed {
+  PackResult out;
+  double target = 0, max_target = 0;  // the search's RMS and max targets (remesh::RemeshOptions)
+  // The full / sparse ratio of the last grid measured both ways (1: none was), which scales the lambda
+  // bisection's sparse estimates.
+  double sparse_bias = 1;
+};
+
+// One bit depth and step scale: repair (done by the caller), remesh, encode with rounded heights.
+Remeshed remesh_at(const SearchContext& ctx, const PackOptions& options, int bits, double step_scale,
+                   double initial_grid) {
   const Mesh& source = ctx.source;
   const MetroReference& reference = ctx.search;
   PackResult out;
@@ -108,21 +143,10 @@ PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bit
   // The error of a decoded candidate: the search's samples decide unless they fall within kSparseBand of the target,
   // where the full density decides (the sparser samples weigh the vertices more: +0.5% at 4 per face, +4% at 2 on
   // the horse), so that every decision is the one the full density would make.
-  auto measure_with = [](const MetroReference& r, const Mesh& m) {
-    const DistanceReport d = r.compare(m);
-    return remesh::ErrorEstimate{d.rel(d.rms), d.rel(d.max)};
-  };
-  // The lambda bisection keeps the sparse estimates, scaled by the full / sparse ratio of the last grid measured both
-  // ways (the final full-density check below corrects what that misses).
-  bool in_band_at_full_density = true;
   double sparse_bias = 1;
   auto measure = [&](const Mesh& m) {
     remesh::ErrorEstimate e = measure_with(reference, m);
     if (&reference == &ctx.full) return e;
-    if (!in_band_at_full_density) {
-      e.rms *= sparse_bias;
-      return e;
-    }
     const bool max_in_band = ro.max_error > 0 && e.max >= kSparseBand[0] * ro.max_error;
     if ((e.rms < kSparseBand[0] * ro.target_error || e.rms > kSparseBand[1] * ro.target_error) && !max_in_band)
       return e;
@@ -130,27 +154,9 @@ PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bit
     if (e.rms > 0) sparse_bias = full.rms / e.rms;
     return full;
   };
-  // The stream of a candidate with options o, and the error of its decoded mesh.
-  // zero_area: the decoded mesh's triangles of zero area (the chosen heights can put a corner on a line);
-  // coincident: its vertices that share their point with another.
-  auto encode_and_measure = [&](const remesh::PrmMesh& prm, const codec::PrmOptions& o, codec::EncodeReport* report,
-                                std::vector<uint8_t>* stream, size_t* zero_area = nullptr,
-                                const MetroReference* against = nullptr, size_t* coincident = nullptr) {
-    auto encoded = encode_prm_mesh(prm, report, o);
-    if (!encoded.ok())
-      throw InputError("the piecewise regular mesh could not be encoded (a remesher or codec bug): " +
-                       encoded.status.message + " (spec §" + encoded.status.spec_section + ")");
-    auto decoded = codec::decode(encoded.value.data(), encoded.value.size());
-    if (!decoded.ok()) throw InputError("the encoder's stream does not decode (a codec bug): " + decoded.status.message);
-    if (zero_area) *zero_area = count_zero_area_triangles(decoded.value);
-    if (coincident) *coincident = count_coincident_vertices(decoded.value);
-    const Mesh mesh = to_mesh(decoded.value);
-    if (stream) *stream = std::move(encoded.value);
-    return against ? measure_with(*against, mesh) : measure(mesh);
-  };
   auto error = [&](const remesh::PrmMesh& prm) {
     ProgressJob::advance_round();
-    if (po.height_lambda > 0) return encode_and_measure(prm, po, nullptr, nullptr);
+    if (po.height_lambda > 0) return encode_and_measure(prm, po, nullptr, nullptr, measure);
     const Mesh& candidate = prm.mesh;
     Mesh q;
     q.triangles = candidate.triangles;
@@ -174,12 +180,27 @@ PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bit
                      encoded.status.message + " (spec §" + encoded.status.spec_section + ")");
   out.stream = std::move(encoded.value);
   out.codec_options = po;
+  return Remeshed{std::move(out), ro.target_error, ro.max_error, sparse_bias};
+}
+
+// The heights of a remeshed attempt: the lambda bisection (its sparse estimates scaled by rm.sparse_bias), then the
+// check at full density. `measured`: false when the chosen stream, measured at full density, misses what the
+// search's sparser samples promised (the caller repeats at full density).
+PackResult finish_at(const SearchContext& ctx, const PackOptions& options, Remeshed rm, bool* measured = nullptr) {
+  PackResult out = std::move(rm.out);
+  const codec::PrmOptions po = out.codec_options;
+  const int bits = out.bits;
+  const double step_scale = out.step_scale;
+  auto measure = [&](const Mesh& m) {
+    remesh::ErrorEstimate e = measure_with(ctx.search, m);
+    if (&ctx.search != &ctx.full) e.rms *= rm.sparse_bias;
+    return e;
+  };
   // The error left below the target buys smaller residuals: the largest lambda that still meets it.
   if (options.optimize_heights && options.height_lambda <= 0 && options.target_error > 0) {
     const auto t1 = std::chrono::steady_clock::now();
     ProgressJob::stage("heights");
     ProgressJob::rounds_left(ctx.plan.lambda_rounds + 1);  // and the check at full density
-    in_band_at_full_density = false;
     // The error grows with lambda: bisection for the last one that meets the target (in at most plan.lambda_rounds).
     int lo = -1, hi = static_cast<int>(std::size(kHeightLambdas));  // lo meets (-1: rounding), hi does not
     // Heights chosen by rate and distortion must not put a vertex on another's point (issue 17): a lambda whose stream
@@ -204,8 +225,8 @@ PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bit
       std::vector<uint8_t> stream;
       size_t zero_area = 0, coincident = 0;
       const remesh::ErrorEstimate e =
-          encode_and_measure(out.remesh.prm, o, &report, &stream, &zero_area, nullptr, &coincident);
-      if (e.rms > ro.target_error || (ro.max_error > 0 && e.max > ro.max_error) || zero_area > 0 ||
+          encode_and_measure(out.remesh.prm, o, &report, &stream, measure, &zero_area, &coincident);
+      if (e.rms > rm.target || (rm.max_target > 0 && e.max > rm.max_target) || zero_area > 0 ||
           coincident > base_coincident) {
         hi = mid;
         continue;
@@ -251,7 +272,8 @@ PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bit
     ProgressJob::rounds_left(1);
     auto full_error = [&](const codec::PrmOptions& o, std::vector<uint8_t>* stream, codec::EncodeReport* report) {
       size_t za = 0;
-      const remesh::ErrorEstimate e = encode_and_measure(out.remesh.prm, o, report, stream, &za, &ctx.full);
+      auto full = [&](const Mesh& m) { return measure_with(ctx.full, m); };
+      const remesh::ErrorEstimate e = encode_and_measure(out.remesh.prm, o, report, stream, full, &za);
       return za > 0 ? remesh::ErrorEstimate{HUGE_VAL, HUGE_VAL} : e;
     };
     const auto decoded = codec::decode(out.stream.data(), out.stream.size());
@@ -294,6 +316,12 @@ PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bit
   return out;
 }
 
+// One bit depth and step scale, remeshed (remesh_at) and its heights chosen (finish_at).
+PackResult pack_at(const SearchContext& ctx, const PackOptions& options, int bits, double step_scale,
+                   double initial_grid, bool* measured = nullptr) {
+  return finish_at(ctx, options, remesh_at(ctx, options, bits, step_scale, initial_grid), measured);
+}
+
 // The step of ladder position p (eighths of an octave below the extent): bits ceil(p / 8), scale 2^(j/8).
 struct Step {
   int bits;
@@ -314,12 +342,16 @@ EffortPlan effort_plan(int effort) {
   // Effort 0 tries one lambda (the bisection's middle, kHeightLambdas[7]): on the paper's horse, venus and bunny a
   // second round changed nothing (the same streams); on the feline it found a larger lambda whose stream is 3.5%
   // smaller. One round saves 0.1-0.7 s CPU there (bench/README.md "pack effort", fifth round).
+  // Effort 4 tries two steps as effort 5 does, but chooses the heights' lambda and checks at full density only the
+  // better one (defer_heights): effort 5's streams on the paper's four models (the venus +0.06% against effort 9,
+  // where effort 3 is +7.8%) for 3-29% less CPU than effort 5 and 1-4.6 s more than effort 3 (bench/README.md
+  // "pack effort", sixth round).
   switch (effort) {
     case 0: p.steps = 1; p.search_samples_per_face = 2; p.lambda_rounds = 1; p.grid_tolerance = 0.15; p.accept_error = 0; break;
     case 1: p.steps = 1; p.search_samples_per_face = 2; p.lambda_rounds = 3; p.grid_tolerance = 0.1; p.accept_error = 0.85; break;
     case 2: p.steps = 1; p.search_samples_per_face = 4; p.lambda_rounds = 4; p.grid_tolerance = 0.06; p.accept_error = 0.9; break;
     case 3: p.steps = 1; p.search_samples_per_face = 4; p.lambda_rounds = 4; break;
-    case 4: p.steps = 1; p.search_samples_per_face = 4; break;
+    case 4: p.steps = 2; p.defer_heights = true; p.search_samples_per_face = 4; break;
     case 5: p.steps = 2; p.search_samples_per_face = 4; break;
     case 6: p.steps = 3; p.search_samples_per_face = 4; break;
     case 7: p.steps = 5; p.search_samples_per_face = 4; break;
@@ -343,8 +375,10 @@ EffortPlan effort_plan(int effort) {
 
 namespace {
 
-// PackMode::prm. input_reference: the input's Metro reference (options.metro_samples), used when no repair is needed.
-PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroReference* input_reference) {
+// PackMode::prm. input_reference: the input's Metro reference (options.metro_samples), used when no repair is needed;
+// input_check: validate_mesh(input) when the caller has it (null: computed here).
+PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroReference* input_reference,
+                    const MeshReport* input_check) {
   auto t0 = std::chrono::steady_clock::now();
   // The effort applies to the search of the step; a given bit depth or step scale is searched as it always was.
   const EffortPlan plan =
@@ -360,7 +394,7 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
   ProgressJob::stage("repair");
   // The remesher needs a consistently oriented 2-manifold. Its boundary loops stay open (issue 22: a range scan is
   // an open surface), unless fill_holes closes them with the paper's fans (paper §4, the bunny protocol).
-  const MeshReport check = validate_mesh(input);
+  const MeshReport check = input_check ? *input_check : validate_mesh(input);
   Mesh closed;
   RepairReport repair;
   const bool ready = check.clean() && check.manifold() && check.oriented() && (check.closed() || !options.fill_holes);
@@ -463,10 +497,26 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
     double grid = 0, seconds = 0;
     bool have = false;
     enum class Outcome { unreachable, smaller, larger };
+    // EffortPlan::defer_heights: the attempts are compared by their streams with rounded heights; the best one's
+    // heights are chosen (finish_at) once the search is over.
+    std::unique_ptr<Remeshed> best_remeshed;
     auto attempt = [&](int bits, double scale) {
       PackResult r;
+      std::unique_ptr<Remeshed> remeshed;
       try {
-        r = pack_one(bits, scale, grid);
+        if (plan.defer_heights) {
+          ProgressJob::attempt(++attempts);
+          remeshed = std::make_unique<Remeshed>(remesh_at(ctx, options, bits, scale, grid));
+          rounds += remeshed->out.remesh.search.size();
+          // The rounded stream must keep every triangle's area (finish_at would refuse the attempt).
+          const auto decoded = codec::decode(remeshed->out.stream.data(), remeshed->out.stream.size());
+          if (!decoded.ok())
+            throw InputError("the encoder's stream does not decode (a codec bug): " + decoded.status.message);
+          if (count_zero_area_triangles(decoded.value) > 0) return Outcome::unreachable;
+          r = remeshed->out;  // a copy: the search's bookkeeping below
+        } else {
+          r = pack_one(bits, scale, grid);
+        }
       } catch (const remesh::VertexBudgetExceeded&) {
         if (!have) throw;  // more bits would not make the grid it needs coarser
         return Outcome::unreachable;
@@ -480,6 +530,7 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
       auto tried = std::move(out.tried);
       out = std::move(r);
       out.tried = std::move(tried);
+      best_remeshed = std::move(remeshed);
       have = true;
       ProgressJob::best_bytes(out.stream.size());
       return Outcome::smaller;
@@ -540,6 +591,26 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
     if (!have)
       throw remesh::TargetNotReached("no grid size reached the target error " + std::to_string(options.target_error) +
                                      " at 12 to " + std::to_string(kMaxPackBits) + " bits");
+    if (best_remeshed) {
+      // The best attempt's heights; where its full-density check misses, the attempt again at full density.
+      const int bits = out.bits;
+      const double scale = out.step_scale;
+      const double best_grid = static_cast<double>(out.remesh.prm.lattice.A) * out.remesh.prm.frame.step;
+      auto tried = std::move(out.tried);
+      bool measured = true;
+      const auto t1 = std::chrono::steady_clock::now();
+      out = finish_at(ctx, options, std::move(*best_remeshed), &measured);
+      if (!measured) {
+        out = pack_at(full_ctx, options, bits, scale, best_grid);
+        rounds += out.remesh.search.size();
+      }
+      seconds += seconds_since(t1);
+      // The kept attempt's entry: the stream's final size (the others' are their rounded heights' sizes).
+      for (PackResult::Trial& t : tried)
+        if (t.bits == bits && t.step_scale == scale) t.bytes = out.stream.size();
+      out.tried = std::move(tried);
+      ProgressJob::best_bytes(out.stream.size());
+    }
     out.seconds_remesh = seconds - out.seconds_encode;  // the whole search
   }
   out.remesh_rounds = rounds;
@@ -556,9 +627,10 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
 // pack_prm on an open surface: its boundary loops are kept (issue 22) unless fill_holes; when the remesher cannot keep
 // them (a broken invariant, std::logic_error), the paper's protocol instead, named in the report
 // (RepairReport::notes) and by boundary_fallback. Never a crash.
-PackResult pack_prm_open(const Mesh& input, const PackOptions& options, const MetroReference* input_reference) {
+PackResult pack_prm_open(const Mesh& input, const PackOptions& options, const MetroReference* input_reference,
+                         const MeshReport* input_check) {
   return detail::pack_keeping_boundary_or_filling(input, options, [&](const Mesh& m, const PackOptions& o) {
-    return pack_prm(m, o, input_reference);
+    return pack_prm(m, o, input_reference, &m == &input ? input_check : nullptr);
   });
 }
 
@@ -675,7 +747,7 @@ PackResult pack(const Mesh& input, const PackOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   bool prm_unreachable = false;  // the PRM's failure: TargetNotReached (otherwise InputError)
   try {
-    out = pack_prm_open(input, options, input_reference.get());
+    out = pack_prm_open(input, options, input_reference.get(), &input_check);
     prm.made = true;
   } catch (const remesh::TargetNotReached& e) {
     if (mode == PackMode::prm) throw;

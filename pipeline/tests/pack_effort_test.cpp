@@ -28,6 +28,11 @@ TEST(PackEffort, LevelsOutsideTheRangeAreRefused) {
   const prm::pipeline::EffortPlan top = prm::pipeline::effort_plan(prm::pipeline::kMaxEffort);
   EXPECT_TRUE(top.exhaustive);
   EXPECT_EQ(top.search_samples_per_face, 10);
+  // Effort 4 compares two steps by their rounded heights and chooses the lambda of the better one only.
+  const prm::pipeline::EffortPlan four = prm::pipeline::effort_plan(4);
+  EXPECT_TRUE(four.defer_heights);
+  EXPECT_EQ(four.steps, 2);
+  EXPECT_FALSE(prm::pipeline::effort_plan(3).defer_heights);
 }
 
 // Each level below the exhaustive one (GridFromTargetError covers that) on a small real mesh: the decoded stream
@@ -45,6 +50,11 @@ TEST_P(PackEffortLevel, MeetsTheTarget) {
   o.mode = prm::pipeline::PackMode::prm;  // the effort levels of the remesher's search
   const prm::pipeline::PackResult r = prm::pipeline::pack(input, o);
   ASSERT_FALSE(r.tried.empty());
+  // The attempt kept is listed with the stream's size (EffortPlan::defer_heights lists the others' rounded sizes).
+  size_t kept = 0;
+  for (const auto& t : r.tried)
+    if (t.bits == r.bits && t.step_scale == r.step_scale && t.bytes == r.stream.size()) ++kept;
+  EXPECT_EQ(kept, 1u);
   EXPECT_LE(r.remesh.error.rms, prm::pipeline::kQuantizationMargin * target);
   const auto decoded = prm::codec::decode(r.stream.data(), r.stream.size());
   ASSERT_TRUE(decoded.ok()) << decoded.status.message;

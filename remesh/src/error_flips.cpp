@@ -21,14 +21,14 @@ constexpr double kErrorFlipGain = 0.1;
 }  // namespace
 
 // Squared distance to the input integrated over a triangle: seven samples, each weighted by a seventh of
-// twice the area.
-double SeamOptimizer::triangle_error(const Vec3& a, const Vec3& b, const Vec3& c) const {
+// twice the area. The hint only bounds the searches (the distance is the smallest over the input's triangles
+// whatever it is): the callers carry one through neighbouring triangles.
+double SeamOptimizer::triangle_error(const Vec3& a, const Vec3& b, const Vec3& c, AabbTree::Hit& hint) const {
   static constexpr double kSamples[7][3] = {{1.0 / 3, 1.0 / 3, 1.0 / 3},   {2.0 / 3, 1.0 / 6, 1.0 / 6},
                                             {1.0 / 6, 2.0 / 3, 1.0 / 6},   {1.0 / 6, 1.0 / 6, 2.0 / 3},
                                             {1.0 / 6, 5.0 / 12, 5.0 / 12}, {5.0 / 12, 1.0 / 6, 5.0 / 12},
                                             {5.0 / 12, 5.0 / 12, 1.0 / 6}};
   double sum = 0;
-  AabbTree::Hit hint;
   for (const auto& w : kSamples) {
     tree_.closest(a * w[0] + b * w[1] + c * w[2], hint);
     if (hint.found()) sum += hint.distance2;
@@ -41,10 +41,11 @@ bool SeamOptimizer::try_error_flip(EH e, double error_unit, Quad& q) {
   if (!flippable(e, q)) return false;
   const int va = static_cast<int>(mesh_.valence(q.a)), vb = static_cast<int>(mesh_.valence(q.b));
   if (va <= 3 || vb <= 3) return false;
+  AabbTree::Hit hint;  // through the quad's four triangles
   const double before =
-      triangle_error(pos(q.a), pos(q.b), pos(q.c)) + triangle_error(pos(q.b), pos(q.a), pos(q.d));
+      triangle_error(pos(q.a), pos(q.b), pos(q.c), hint) + triangle_error(pos(q.b), pos(q.a), pos(q.d), hint);
   const double after =
-      triangle_error(pos(q.c), pos(q.a), pos(q.d)) + triangle_error(pos(q.d), pos(q.b), pos(q.c));
+      triangle_error(pos(q.c), pos(q.a), pos(q.d), hint) + triangle_error(pos(q.d), pos(q.b), pos(q.c), hint);
   if (!(after < before * (1.0 - kErrorFlipGain))) return false;
   auto dev = [](int v) { return (v - 6) * (v - 6); };
   const int vc = static_cast<int>(mesh_.valence(q.c)), vd = static_cast<int>(mesh_.valence(q.d));
@@ -75,11 +76,12 @@ bool SeamOptimizer::touches_grid_face(EH e) const {
 size_t SeamOptimizer::reduce_error_by_flips() {
   double sum = 0;
   size_t faces = 0;
+  AabbTree::Hit hint;
   for (auto f : mesh_.faces()) {
     if (mesh_.status(f).deleted()) continue;
     auto it = mesh_.cfv_iter(f);
     const VH a = *it, b = *++it, c = *++it;
-    sum += triangle_error(pos(a), pos(b), pos(c));
+    sum += triangle_error(pos(a), pos(b), pos(c), hint);
     ++faces;
   }
   const double error_unit = faces ? sum / static_cast<double>(faces) : 0;

@@ -27,6 +27,8 @@ constexpr double kSamples[7][3] = {{1.0 / 3, 1.0 / 3, 1.0 / 3}, {2.0 / 3, 1.0 / 
                                    {5.0 / 12, 1.0 / 6, 5.0 / 12}, {5.0 / 12, 5.0 / 12, 1.0 / 6}};
 // A triangle tilted further than this from a vertex's axis (cosine) says little about that vertex's height.
 constexpr double kMinFacing = 0.3;
+// Faces per parallel task of the fit, in order (one closest-point hint carried through each).
+constexpr size_t kFaceChunk = 256;
 
 }  // namespace
 
@@ -73,7 +75,10 @@ HeightFitStats fit_heights(PrmMesh& prm, const Mesh& input, const AabbTree& tree
   enum : uint8_t { kFlipUnknown, kFlipUnknownMark, kFlipNo, kFlipYes };
   std::vector<uint8_t> flip_state(nf, kFlipUnknown);
   for (int it = 0; it < options.iterations; ++it) {
-    tbb::parallel_for(size_t{0}, nf, [&](size_t f) {
+    // Consecutive faces are neighbours (each relief's faces come in lattice order): the last sample's answer bounds
+    // the next face's first query (AabbTree's hint) as it bounds the face's other six. Only the point is used, which
+    // a tie between triangles (a shared vertex or edge) does not change.
+    auto fit_face = [&](size_t f, AabbTree::Hit& hint) {
       const Tri& t = m.triangles[f];
       const Vec3 &a = m.positions[t[0]], &b = m.positions[t[1]], &c = m.positions[t[2]];
       const Vec3 n2 = triangle_normal_area2(a, b, c);
@@ -89,7 +94,6 @@ HeightFitStats fit_heights(PrmMesh& prm, const Mesh& input, const AabbTree& tree
         any = any || facing[k] > kMinFacing;
       }
       if (!any) return;
-      AabbTree::Hit hint;
       for (const auto& s : kSamples) {
         const Vec3 p = a * s[0] + b * s[1] + c * s[2];
         tree.closest(p, hint);
@@ -101,6 +105,11 @@ HeightFitStats fit_heights(PrmMesh& prm, const Mesh& input, const AabbTree& tree
           out[static_cast<size_t>(2 * k + 1)] += s[k] * area2;
         }
       }
+    };
+    // Fixed chunks, each with its own hint: the answers do not depend on the scheduling.
+    tbb::parallel_for(size_t{0}, (nf + kFaceChunk - 1) / kFaceChunk, [&](size_t c) {
+      AabbTree::Hit hint;
+      for (size_t f = c * kFaceChunk, end = std::min(nf, f + kFaceChunk); f < end; ++f) fit_face(f, hint);
     });
     std::vector<double> num(nv, 0.0), den(nv, 0.0);
     for (size_t f = 0; f < nf; ++f)

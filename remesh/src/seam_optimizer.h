@@ -78,7 +78,8 @@ class SeamOptimizer {
   size_t regularize_valences();
 
   // error_flips.cpp (ours): irregular edges flipped where that brings the surface closer to the input.
-  double triangle_error(const Vec3& a, const Vec3& b, const Vec3& c) const;
+  // `hint`: the last answer of a nearby query (AabbTree's hint), updated; the result does not depend on it.
+  double triangle_error(const Vec3& a, const Vec3& b, const Vec3& c, AabbTree::Hit& hint) const;
   bool try_error_flip(EH e, double error_unit, Quad& q);
   bool grid_face(HH h) const;
   bool touches_grid_face(EH e) const;

@@ -130,6 +130,9 @@ struct EffortPlan {
   double next_exponent = 0;       // remesh::RemeshOptions::next_exponent
   double aim = 0.97;              // remesh::RemeshOptions::aim
   bool round_to_nearest = false;  // remesh::RemeshOptions::round_to_nearest
+  // Without `exhaustive`: the steps are compared by their streams with rounded heights, and only the best one's
+  // heights are chosen by rate and distortion (the lambda bisection) and checked at full density. false: every step's.
+  bool defer_heights = false;
   // PackMode::automatic: the piecewise regular candidate is made first, and the general one only when its stream at
   // its fewest bits (general_floor_bytes, one encode) is smaller than the PRM stream; otherwise it is not tried (the
   // report says so). false: the general candidate is always made, first.
