@@ -17,9 +17,9 @@ fi
 # Include directories as -iquote: emscripten's libc++ includes <limits.h>, which -I codec/src would resolve to the
 # codec's own src/limits.h (GCC's libstdc++ does not); the codec includes its headers with quotes only.
 # -mbulk-memory (here and at the link): memset and memcpy, which clear and copy the decoder's arrays, become the
-# memory.fill / memory.copy instructions instead of loops compiled to wasm, and emscripten's memcpy no longer calls out to
-# JavaScript for large copies: 472 B smaller gzipped and 2-4% faster in V8 (web/README.md, "hweb2"). Bulk memory is in
-# every browser WebAssembly runs in since 2021 (Chrome 75, Firefox 79, Safari 15).
+# memory.fill / memory.copy instructions instead of loops compiled to wasm, and emscripten's memcpy no longer calls
+# out to JavaScript for large copies: 472 B smaller gzipped and 1-4% faster in V8 (web/README.md, "hweb2"). Bulk
+# memory is in Chrome 75, Firefox 79, Safari 15 and later.
 wasm_features="-mbulk-memory"
 emcmake cmake -S "$root" -B "$work" -G Ninja -DCMAKE_BUILD_TYPE=Release -DPRM_CODEC_ONLY=ON -DPRM_BUILD_TESTS=OFF \
   -DPRM_BUILD_BENCH=OFF "-DCMAKE_INCLUDE_FLAG_CXX=-iquote " "-DCMAKE_C_FLAGS=$wasm_features" \
