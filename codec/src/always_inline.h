@@ -19,12 +19,3 @@
 #define PRM_WASM_INLINE inline
 #define PRM_WASM_INLINE_LAMBDA
 #endif
-
-// PRM_NATIVE_INLINE: forced inline natively, kept out of line in the wasm module (Spirale Reversi's apply and
-// close_root: 2.0% fewer native instructions; inlined in the module, forced or by clang's own choice from the header,
-// they cost it 500-900 B gzipped).
-#if defined(__wasm__)
-#define PRM_NATIVE_INLINE inline __attribute__((noinline))
-#else
-#define PRM_NATIVE_INLINE PRM_ALWAYS_INLINE
-#endif
