@@ -25,8 +25,45 @@ constexpr double kFaceProbeShare = 0.5;
 constexpr double kMaxFaceGrid = 8;
 // A point of a triangle this close to an edge (smallest barycentric coordinate) splits the edge, not the triangle.
 constexpr double kEdgeBarycentric = 0.02;
-// The points of a mesh triangle measured against the input (pr>in): its centroid and its edges' midpoints.
+// The points of a mesh triangle the first refinement measured against the input (thin_sheets false): its centroid
+// and its edges' midpoints.
 constexpr double kProbes[4][3] = {{1.0 / 3, 1.0 / 3, 1.0 / 3}, {0.5, 0.5, 0}, {0, 0.5, 0.5}, {0.5, 0, 0.5}};
+// Steps of the walk along a mesh triangle's normal into a notch it bridges (normal_reach).
+constexpr int kReachSteps = 4;
+
+// Divisions per side of the barycentric grid a triangle is probed on: about as fine as the bound (a thin tip or a
+// notch strays most between the vertices, where Metro's samples find it), at least 2, at most kMaxFaceGrid.
+int grid_divisions(const Vec3& a, const Vec3& b, const Vec3& c, double bound) {
+  const double longest = std::sqrt(std::max({norm2(b - a), norm2(c - b), norm2(a - c)}));
+  return static_cast<int>(std::clamp(std::ceil(longest / bound), 2.0, kMaxFaceGrid));
+}
+
+// Calls visit(x) for the points of triangle (a, b, c) on its barycentric grid with n divisions a side, its vertices
+// left out (they are measured on their own).
+template <class Visit>
+void for_each_grid_point(const Vec3& a, const Vec3& b, const Vec3& c, int n, Visit&& visit) {
+  for (int p = 0; p <= n; ++p)
+    for (int q = 0; p + q <= n; ++q) {
+      const int r = n - p - q;
+      if (p == n || q == n || r == n) continue;
+      visit((1.0 / n) * (static_cast<double>(p) * a + static_cast<double>(q) * b + static_cast<double>(r) * c));
+    }
+}
+
+// Where the line through `at` along the unit normal n meets the input, found by walking along it by the normal part
+// of the offset to the input's closest point (kReachSteps steps): a mesh triangle bridging a notch (between two legs,
+// the fold of a thin sheet) strays from the notch's bottom, and the input's closest point to it lies on a wall of the
+// notch, to the side, where a new vertex would turn a triangle over; the point below it along the normal does not.
+Vec3 normal_reach(const AabbTree& input_tree, const Vec3& at, const Vec3& n) {
+  Vec3 x = at;
+  AabbTree::Hit hint;
+  for (int k = 0; k < kReachSteps; ++k) {
+    input_tree.closest(x, hint);
+    if (!hint.found()) break;
+    x = x + dot(hint.point - x, n) * n;
+  }
+  return x;
+}
 
 Vec3 face_normal(const Mesh& m, const Tri& t) {
   return triangle_normal_area2(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]);
@@ -99,13 +136,16 @@ bool split_in_three(Mesh& m, std::vector<uint8_t>& touched, uint32_t f, uint32_t
 
 // Inserts a vertex for d into m (splitting d.face, or one of its edges and the triangle across it). False when every
 // way of doing so turns a triangle over or touches a triangle changed in this round.
+// A straying mesh point (strays_from_input) with `reach`: where the input's closest point would turn a triangle over,
+// the new vertex goes along the normal (normal_reach) instead.
 bool insert(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std::vector<uint8_t>& touched,
-            const Deviation& d) {
+            const AabbTree& input_tree, bool reach, const Deviation& d) {
   const uint32_t f = d.face;
   const Tri t = m.triangles[f];
   const Vec3 old_normal = face_normal(m, t);
   const std::array<double, 3> bc = barycentric(m, t, d.at);
   const uint32_t nv = static_cast<uint32_t>(m.positions.size());
+  const bool along_normal = reach && strays_from_input(d);
   m.positions.push_back(d.wanted);
   std::array<int, 3> corners = {0, 1, 2};  // the closest edge first: opposite the smallest coordinate
   std::sort(corners.begin(), corners.end(),
@@ -113,6 +153,9 @@ bool insert(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std
   if (bc[static_cast<size_t>(corners[0])] > kEdgeBarycentric) {
     // Inside the triangle: split it in three.
     if (split_in_three(m, touched, f, nv, d.at, d.wanted)) return true;
+    if (along_normal &&
+        split_in_three(m, touched, f, nv, d.at, normal_reach(input_tree, d.at, normalized(old_normal))))
+      return true;
   }
   // Near an edge (or where the split in three turns a triangle over): split an edge and both its triangles. The new
   // vertex at the wanted point or, where that turns a triangle over (beyond a corner or a sharp crease), part of the
@@ -134,18 +177,23 @@ bool insert(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std
     const double s = std::clamp(dot(d.wanted - pa, pb - pa) / std::max(norm2(pb - pa), 1e-300), 0.1, 0.9);
     const Vec3 on_edge = pa + s * (pb - pa);
     const Vec3 normal_u = face_normal(m, u);
-    for (double share : kShares) {
-      m.positions[nv] = on_edge + share * (d.wanted - on_edge);
-      if (!faces_agree(m, old_normal, mine) || !faces_agree(m, normal_u, theirs)) continue;
-      m.triangles[f] = mine[0];
-      m.triangles.push_back(mine[1]);
-      m.triangles[static_cast<size_t>(g)] = theirs[0];
-      m.triangles.push_back(theirs[1]);
-      touched[f] = 1;
-      touched[static_cast<size_t>(g)] = 1;
-      touched.resize(m.triangles.size(), 1);
-      return true;
-    }
+    // The wanted point, then (a straying point) the input along the pair's normal below the point on the edge.
+    std::vector<Vec3> targets = {d.wanted};
+    if (along_normal)
+      targets.push_back(normal_reach(input_tree, on_edge, normalized(normalized(old_normal) + normalized(normal_u))));
+    for (const Vec3& target : targets)
+      for (double share : kShares) {
+        m.positions[nv] = on_edge + share * (target - on_edge);
+        if (!faces_agree(m, old_normal, mine) || !faces_agree(m, normal_u, theirs)) continue;
+        m.triangles[f] = mine[0];
+        m.triangles.push_back(mine[1]);
+        m.triangles[static_cast<size_t>(g)] = theirs[0];
+        m.triangles.push_back(theirs[1]);
+        touched[f] = 1;
+        touched[static_cast<size_t>(g)] = 1;
+        touched.resize(m.triangles.size(), 1);
+        return true;
+      }
   }
   m.positions.pop_back();
   return false;
@@ -181,25 +229,28 @@ bool insert_on_facing_face(Mesh& m, const std::vector<std::vector<uint32_t>>& ve
   return false;
 }
 
-// The largest squared distance to the input of the probe points (kProbes) of the faces around a vertex.
-double probe_deviation2(const Mesh& m, const std::vector<uint32_t>& faces, const AabbTree& input_tree) {
+// The largest squared distance to the input of the probe points (grid_divisions at `bound`) of some faces.
+double probe_deviation2(const Mesh& m, const std::vector<uint32_t>& faces, const AabbTree& input_tree, double bound) {
   double worst = 0;
+  AabbTree::Hit hint;
   for (uint32_t f : faces) {
     const Tri& t = m.triangles[f];
-    for (const auto& w : kProbes) {
-      const Vec3 p = w[0] * m.positions[t[0]] + w[1] * m.positions[t[1]] + w[2] * m.positions[t[2]];
-      worst = std::max(worst, input_tree.closest(p).distance2);
-    }
+    const Vec3 &a = m.positions[t[0]], &b = m.positions[t[1]], &c = m.positions[t[2]];
+    for_each_grid_point(a, b, c, grid_divisions(a, b, c, bound), [&](const Vec3& x) {
+      input_tree.closest(x, hint);
+      worst = std::max(worst, hint.distance2);
+    });
   }
   return worst;
 }
+
 
 // A triangle that strays from the input at a point near its edge a-b (pr>in: it bridges a notch or the fold of a
 // thin sheet) may follow the input with that edge flipped, at no cost in vertices: the pair (c, a, b), (b, a, e)
 // becomes (c, a, e), (c, e, b) when c-e is not an edge yet, neither new face turns over against the pair, and the
 // new faces' probe points stray less than the old ones'. False when the flip is not made.
 bool flip_straying_edge(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, const AabbTree& input_tree,
-                        std::vector<uint8_t>& touched, const Deviation& d) {
+                        double bound, std::vector<uint8_t>& touched, const Deviation& d) {
   const uint32_t f = d.face;
   const Tri t = m.triangles[f];
   const std::array<double, 3> bc = barycentric(m, t, d.at);
@@ -219,11 +270,11 @@ bool flip_straying_edge(Mesh& m, const std::vector<std::vector<uint32_t>>& verte
   }
   const Vec3 pair_normal = face_normal(m, t) + face_normal(m, u);
   const Tri old_f = t, old_g = u;
-  const double before = probe_deviation2(m, {f, static_cast<uint32_t>(g)}, input_tree);
+  const double before = probe_deviation2(m, {f, static_cast<uint32_t>(g)}, input_tree, bound);
   m.triangles[f] = {c, a, e};
   m.triangles[static_cast<size_t>(g)] = {c, e, b};
   if (faces_agree(m, pair_normal, {m.triangles[f], m.triangles[static_cast<size_t>(g)]}) &&
-      probe_deviation2(m, {f, static_cast<uint32_t>(g)}, input_tree) < before) {
+      probe_deviation2(m, {f, static_cast<uint32_t>(g)}, input_tree, bound) < before) {
     touched[f] = 1;
     touched[static_cast<size_t>(g)] = 1;
     return true;
@@ -259,7 +310,7 @@ bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_f
     // its faces must stray less than before.
     const bool mesh_point = strays_from_input(d);
     const Vec3 to = mesh_point ? from + (d.wanted - d.at) : d.wanted;
-    const double before2 = probe_deviation2(m, faces, input_tree);
+    const double before2 = probe_deviation2(m, faces, input_tree, std::sqrt(bound2));
     const double allowed2 = mesh_point ? before2 * 0.999 : std::max(bound2, before2);
     for (double share : kShares) {
       m.positions[v] = from + share * (to - from);
@@ -268,7 +319,7 @@ bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_f
         const Vec3 n = face_normal(m, m.triangles[faces[k]]);
         ok = dot(n, normals[k]) > 1e-3 * norm(n) * norm(normals[k]);
       }
-      if (ok && probe_deviation2(m, faces, input_tree) <= allowed2) {
+      if (ok && probe_deviation2(m, faces, input_tree, std::sqrt(bound2)) <= allowed2) {
         for (uint32_t f : faces) touched[f] = 1;
         ++moved[v];
         return true;
@@ -323,20 +374,14 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
       tbb::parallel_for(size_t{0}, near_far.size(), [&](size_t i) {
         const Tri& t = input.triangles[near_far[i]];
         const Vec3 &a = input.positions[t[0]], &b = input.positions[t[1]], &c = input.positions[t[2]];
-        const double longest = std::sqrt(std::max({norm2(b - a), norm2(c - b), norm2(a - c)}));
-        const int n = static_cast<int>(std::clamp(std::ceil(longest / options.max_deviation), 2.0, kMaxFaceGrid));
-        for (int p = 0; p <= n; ++p)
-          for (int q = 0; p + q <= n; ++q) {
-            const int r = n - p - q;
-            if ((p == n || q == n || r == n)) continue;  // the vertices are measured already
-            const Vec3 x = (1.0 / n) * (static_cast<double>(p) * a + static_cast<double>(q) * b +
-                                        static_cast<double>(r) * c);
-            const AabbTree::Hit h = tree.closest(x);
-            if (h.found() && (!face_hit[i].found() || h.distance2 > face_hit[i].distance2)) {
-              face_hit[i] = h;
-              face_point[i] = x;
-            }
+        AabbTree::Hit hint;
+        for_each_grid_point(a, b, c, grid_divisions(a, b, c, options.max_deviation), [&](const Vec3& x) {
+          tree.closest(x, hint);
+          if (hint.found() && (!face_hit[i].found() || hint.distance2 > face_hit[i].distance2)) {
+            face_hit[i] = hint;
+            face_point[i] = x;
           }
+        });
       });
       for (size_t i = 0; i < near_far.size(); ++i)
         if (face_hit[i].found() && face_hit[i].distance2 > bound2)
@@ -356,28 +401,30 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
         if (vertex_hits[v].found() && vertex_hits[v].distance2 > bound2)
           far.push_back({a_face[v], m.positions[v], vertex_hits[v].point, vertex_hits[v].distance2, kMeshVertex, v});
     }
-    // pr>in: the mesh's triangles whose centroid or edge midpoints are far from the input.
-    std::vector<std::array<AabbTree::Hit, 4>> probes(m.triangles.size());
+    // pr>in: the mesh's triangles with a point far from the input (thin sheets: on the grid Metro-like dense probes
+    // see, grid_divisions; else the centroid and the edges' midpoints).
+    std::vector<AabbTree::Hit> probe_hit(m.triangles.size());
+    std::vector<Vec3> probe_point(m.triangles.size());
     tbb::parallel_for(size_t{0}, m.triangles.size(), [&](size_t f) {
       const Tri& t = m.triangles[f];
-      for (size_t k = 0; k < 4; ++k) {
-        const Vec3 p = kProbes[k][0] * m.positions[t[0]] + kProbes[k][1] * m.positions[t[1]] +
-                       kProbes[k][2] * m.positions[t[2]];
-        probes[f][k] = input_tree.closest(p);
+      const Vec3 &a = m.positions[t[0]], &b = m.positions[t[1]], &c = m.positions[t[2]];
+      AabbTree::Hit hint;
+      const auto visit = [&](const Vec3& x) {
+        input_tree.closest(x, hint);
+        if (hint.found() && (!probe_hit[f].found() || hint.distance2 > probe_hit[f].distance2)) {
+          probe_hit[f] = hint;
+          probe_point[f] = x;
+        }
+      };
+      if (options.thin_sheets) {
+        for_each_grid_point(a, b, c, grid_divisions(a, b, c, options.max_deviation), visit);
+      } else {
+        for (const auto& w : kProbes) visit(w[0] * a + w[1] * b + w[2] * c);
       }
     });
-    for (uint32_t f = 0; f < m.triangles.size(); ++f) {
-      const Tri& t = m.triangles[f];
-      size_t worst = 4;
-      for (size_t k = 0; k < 4; ++k)
-        if (probes[f][k].found() && probes[f][k].distance2 > bound2 &&
-            (worst == 4 || probes[f][k].distance2 > probes[f][worst].distance2))
-          worst = k;
-      if (worst == 4) continue;
-      const Vec3 p = kProbes[worst][0] * m.positions[t[0]] + kProbes[worst][1] * m.positions[t[1]] +
-                     kProbes[worst][2] * m.positions[t[2]];
-      far.push_back({f, p, probes[f][worst].point, probes[f][worst].distance2, kMeshPoint});
-    }
+    for (uint32_t f = 0; f < m.triangles.size(); ++f)
+      if (probe_hit[f].found() && probe_hit[f].distance2 > bound2)
+        far.push_back({f, probe_point[f], probe_hit[f].point, probe_hit[f].distance2, kMeshPoint});
     if (far.empty()) break;
     // Farthest first; one insertion per triangle neighbourhood in a round (the rest is measured again next round).
     std::sort(far.begin(), far.end(), [](const Deviation& a, const Deviation& b) {
@@ -403,12 +450,12 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
       }
       if (d.input_vertex == kMeshVertex) continue;  // moved or left
       if (options.thin_sheets && d.input_vertex == kMeshPoint &&
-          flip_straying_edge(m, vertex_faces, input_tree, touched, d)) {
+          flip_straying_edge(m, vertex_faces, input_tree, options.max_deviation, touched, d)) {
         ++st.flipped;
         ++inserted_this_round;
         continue;
       }
-      if (insert(m, vertex_faces, touched, d) ||
+      if (insert(m, vertex_faces, touched, input_tree, options.thin_sheets, d) ||
           (options.thin_sheets && !strays_from_input(d) && insert_on_facing_face(m, vertex_faces, touched, d))) {
         ++st.inserted;
         ++inserted_this_round;
