@@ -115,15 +115,48 @@ struct Deviation {
 constexpr uint32_t kMeshPoint = UINT32_MAX, kInputPoint = UINT32_MAX - 1, kMeshVertex = UINT32_MAX - 2;
 bool strays_from_input(const Deviation& d) { return d.input_vertex == kMeshPoint || d.input_vertex == kMeshVertex; }
 
+// The largest squared distance to the input of the probe points (grid_divisions at `bound`) of some triangles.
+double probe_deviation2(const Mesh& m, const std::vector<Tri>& tris, const AabbTree& input_tree, double bound) {
+  double worst = 0;
+  AabbTree::Hit hint;
+  for (const Tri& t : tris) {
+    const Vec3 &a = m.positions[t[0]], &b = m.positions[t[1]], &c = m.positions[t[2]];
+    for_each_grid_point(a, b, c, grid_divisions(a, b, c, bound), [&](const Vec3& x) {
+      input_tree.closest(x, hint);
+      worst = std::max(worst, hint.distance2);
+    });
+  }
+  return worst;
+}
+std::vector<Tri> triangles_of(const Mesh& m, const std::vector<uint32_t>& faces) {
+  std::vector<Tri> tris;
+  for (uint32_t f : faces) tris.push_back(m.triangles[f]);
+  return tris;
+}
+
+// What a new vertex must not do (thin sheets): make its triangles stray from the input (at their probe points) more
+// than the bound and more than the triangles they replace did; a vertex at the input's closest point to the side of
+// a notch, or on a wall of a dent, would. No input tree: not checked (the first refinement).
+struct StrayCheck {
+  const AabbTree* input_tree = nullptr;
+  double bound = 0;
+  bool passes(const Mesh& m, const std::vector<Tri>& old_tris, const std::vector<Tri>& new_tris) const {
+    if (input_tree == nullptr) return true;
+    const double allowed2 = std::max(bound * bound, probe_deviation2(m, old_tris, *input_tree, bound));
+    return probe_deviation2(m, new_tris, *input_tree, bound) <= allowed2;
+  }
+};
+
 // Splits face f in three at the new vertex nv, placed at `to` or, where that turns a triangle over, part of the way
-// there from `from` (kShares). False (f unchanged) when every place turns one over.
-bool split_in_three(Mesh& m, std::vector<uint8_t>& touched, uint32_t f, uint32_t nv, const Vec3& from, const Vec3& to) {
+// there from `from` (kShares). False (f unchanged) when every place turns one over or fails the check.
+bool split_in_three(Mesh& m, std::vector<uint8_t>& touched, const StrayCheck& check, uint32_t f, uint32_t nv,
+                    const Vec3& from, const Vec3& to) {
   const Tri t = m.triangles[f];
   const Vec3 old_normal = face_normal(m, t);
   const std::vector<Tri> tris = {{t[0], t[1], nv}, {t[1], t[2], nv}, {t[2], t[0], nv}};
   for (double share : kShares) {
     m.positions[nv] = from + share * (to - from);
-    if (!faces_agree(m, old_normal, tris)) continue;
+    if (!faces_agree(m, old_normal, tris) || !check.passes(m, {t}, tris)) continue;
     m.triangles[f] = tris[0];
     m.triangles.push_back(tris[1]);
     m.triangles.push_back(tris[2]);
@@ -139,7 +172,7 @@ bool split_in_three(Mesh& m, std::vector<uint8_t>& touched, uint32_t f, uint32_t
 // A straying mesh point (strays_from_input) with `reach`: where the input's closest point would turn a triangle over,
 // the new vertex goes along the normal (normal_reach) instead.
 bool insert(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std::vector<uint8_t>& touched,
-            const AabbTree& input_tree, bool reach, const Deviation& d) {
+            const AabbTree& input_tree, const StrayCheck& check, bool reach, const Deviation& d) {
   const uint32_t f = d.face;
   const Tri t = m.triangles[f];
   const Vec3 old_normal = face_normal(m, t);
@@ -152,9 +185,9 @@ bool insert(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std
             [&](int x, int y) { return bc[static_cast<size_t>(x)] < bc[static_cast<size_t>(y)]; });
   if (bc[static_cast<size_t>(corners[0])] > kEdgeBarycentric) {
     // Inside the triangle: split it in three.
-    if (split_in_three(m, touched, f, nv, d.at, d.wanted)) return true;
+    if (split_in_three(m, touched, check, f, nv, d.at, d.wanted)) return true;
     if (along_normal &&
-        split_in_three(m, touched, f, nv, d.at, normal_reach(input_tree, d.at, normalized(old_normal))))
+        split_in_three(m, touched, check, f, nv, d.at, normal_reach(input_tree, d.at, normalized(old_normal))))
       return true;
   }
   // Near an edge (or where the split in three turns a triangle over): split an edge and both its triangles. The new
@@ -184,7 +217,9 @@ bool insert(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std
     for (const Vec3& target : targets)
       for (double share : kShares) {
         m.positions[nv] = on_edge + share * (target - on_edge);
-        if (!faces_agree(m, old_normal, mine) || !faces_agree(m, normal_u, theirs)) continue;
+        if (!faces_agree(m, old_normal, mine) || !faces_agree(m, normal_u, theirs) ||
+            !check.passes(m, {t, u}, {mine[0], mine[1], theirs[0], theirs[1]}))
+          continue;
         m.triangles[f] = mine[0];
         m.triangles.push_back(mine[1]);
         m.triangles[static_cast<size_t>(g)] = theirs[0];
@@ -205,7 +240,7 @@ bool insert(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std
 // point best first, the first whose split in three with the new vertex at the point (or part of the way there from
 // its centroid) turns nothing over is split. False when none is.
 bool insert_on_facing_face(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces,
-                           std::vector<uint8_t>& touched, const Deviation& d) {
+                           std::vector<uint8_t>& touched, const StrayCheck& check, const Deviation& d) {
   std::vector<std::pair<double, uint32_t>> candidates;  // (-cosine, face)
   for (uint32_t v : m.triangles[d.face])
     for (uint32_t h : vertex_faces[v]) {
@@ -223,26 +258,12 @@ bool insert_on_facing_face(Mesh& m, const std::vector<std::vector<uint32_t>>& ve
   for (const auto& [cosine, h] : candidates) {
     const Tri& t = m.triangles[h];
     const Vec3 centroid = (1.0 / 3) * (m.positions[t[0]] + m.positions[t[1]] + m.positions[t[2]]);
-    if (split_in_three(m, touched, h, nv, centroid, d.wanted)) return true;
+    if (split_in_three(m, touched, check, h, nv, centroid, d.wanted)) return true;
   }
   m.positions.pop_back();
   return false;
 }
 
-// The largest squared distance to the input of the probe points (grid_divisions at `bound`) of some faces.
-double probe_deviation2(const Mesh& m, const std::vector<uint32_t>& faces, const AabbTree& input_tree, double bound) {
-  double worst = 0;
-  AabbTree::Hit hint;
-  for (uint32_t f : faces) {
-    const Tri& t = m.triangles[f];
-    const Vec3 &a = m.positions[t[0]], &b = m.positions[t[1]], &c = m.positions[t[2]];
-    for_each_grid_point(a, b, c, grid_divisions(a, b, c, bound), [&](const Vec3& x) {
-      input_tree.closest(x, hint);
-      worst = std::max(worst, hint.distance2);
-    });
-  }
-  return worst;
-}
 
 
 // A triangle that strays from the input at a point near its edge a-b (pr>in: it bridges a notch or the fold of a
@@ -270,11 +291,11 @@ bool flip_straying_edge(Mesh& m, const std::vector<std::vector<uint32_t>>& verte
   }
   const Vec3 pair_normal = face_normal(m, t) + face_normal(m, u);
   const Tri old_f = t, old_g = u;
-  const double before = probe_deviation2(m, {f, static_cast<uint32_t>(g)}, input_tree, bound);
+  const double before = probe_deviation2(m, {m.triangles[f], m.triangles[static_cast<size_t>(g)]}, input_tree, bound);
   m.triangles[f] = {c, a, e};
   m.triangles[static_cast<size_t>(g)] = {c, e, b};
   if (faces_agree(m, pair_normal, {m.triangles[f], m.triangles[static_cast<size_t>(g)]}) &&
-      probe_deviation2(m, {f, static_cast<uint32_t>(g)}, input_tree, bound) < before) {
+      probe_deviation2(m, {m.triangles[f], m.triangles[static_cast<size_t>(g)]}, input_tree, bound) < before) {
     touched[f] = 1;
     touched[static_cast<size_t>(g)] = 1;
     return true;
@@ -310,7 +331,7 @@ bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_f
     // its faces must stray less than before.
     const bool mesh_point = strays_from_input(d);
     const Vec3 to = mesh_point ? from + (d.wanted - d.at) : d.wanted;
-    const double before2 = probe_deviation2(m, faces, input_tree, std::sqrt(bound2));
+    const double before2 = probe_deviation2(m, triangles_of(m, faces), input_tree, std::sqrt(bound2));
     const double allowed2 = mesh_point ? before2 * 0.999 : std::max(bound2, before2);
     for (double share : kShares) {
       m.positions[v] = from + share * (to - from);
@@ -319,7 +340,7 @@ bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_f
         const Vec3 n = face_normal(m, m.triangles[faces[k]]);
         ok = dot(n, normals[k]) > 1e-3 * norm(n) * norm(normals[k]);
       }
-      if (ok && probe_deviation2(m, faces, input_tree, std::sqrt(bound2)) <= allowed2) {
+      if (ok && probe_deviation2(m, triangles_of(m, faces), input_tree, std::sqrt(bound2)) <= allowed2) {
         for (uint32_t f : faces) touched[f] = 1;
         ++moved[v];
         return true;
@@ -343,6 +364,8 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
     for (uint32_t v : t) used[v] = 1;
   const double bound2 = options.max_deviation * options.max_deviation;
   std::vector<std::vector<uint32_t>> vertex_faces;
+  StrayCheck check;
+  if (options.thin_sheets) check = {&input_tree, options.max_deviation};
   std::vector<uint8_t> moved;  // rim moves per vertex, over all rounds (at most kMaxMoves: no back and forth)
   while (st.rounds < kMaxRounds && st.inserted < budget) {
     ++st.rounds;
@@ -455,8 +478,8 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
         ++inserted_this_round;
         continue;
       }
-      if (insert(m, vertex_faces, touched, input_tree, options.thin_sheets, d) ||
-          (options.thin_sheets && !strays_from_input(d) && insert_on_facing_face(m, vertex_faces, touched, d))) {
+      if (insert(m, vertex_faces, touched, input_tree, check, options.thin_sheets, d) ||
+          (options.thin_sheets && !strays_from_input(d) && insert_on_facing_face(m, vertex_faces, touched, check, d))) {
         ++st.inserted;
         ++inserted_this_round;
       } else {
