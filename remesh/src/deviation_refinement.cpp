@@ -6,11 +6,15 @@
 #include <array>
 #include <cmath>
 #include <vector>
+#include <cstdio>
+#include <cstdlib>
 
+#include "prm/remesh/lattice.h"
 #include "prm/vec3.h"
 
 namespace prm::remesh {
 namespace {
+bool g_dbg = false;
 
 // How far from the split edge towards the wanted point a new vertex (or a moved one) may go, tried in this order;
 // part of the way is progress too, and the next round measures what is left.
@@ -140,10 +144,16 @@ std::vector<Tri> triangles_of(const Mesh& m, const std::vector<uint32_t>& faces)
 struct StrayCheck {
   const AabbTree* input_tree = nullptr;
   double bound = 0;
-  bool passes(const Mesh& m, const std::vector<Tri>& old_tris, const std::vector<Tri>& new_tris) const {
-    if (input_tree == nullptr) return true;
-    const double allowed2 = std::max(bound * bound, probe_deviation2(m, old_tris, *input_tree, bound));
-    return probe_deviation2(m, new_tris, *input_tree, bound) <= allowed2;
+  // What the new triangles may stray (squared), with the new vertex still on the old surface: the old triangles'
+  // probes and the new ones' (the same surface on the new triangles' grids, so that a move is compared with the
+  // same points and not with a sparser sample of a place that strays all over).
+  double allowed2(const Mesh& m, const std::vector<Tri>& old_tris, const std::vector<Tri>& new_tris) const {
+    if (input_tree == nullptr) return 0;
+    return std::max({bound * bound, probe_deviation2(m, old_tris, *input_tree, bound),
+                     probe_deviation2(m, new_tris, *input_tree, bound)});
+  }
+  bool passes(const Mesh& m, const std::vector<Tri>& new_tris, double allowed2) const {
+    return input_tree == nullptr || probe_deviation2(m, new_tris, *input_tree, bound) <= allowed2;
   }
 };
 
@@ -154,9 +164,11 @@ bool split_in_three(Mesh& m, std::vector<uint8_t>& touched, const StrayCheck& ch
   const Tri t = m.triangles[f];
   const Vec3 old_normal = face_normal(m, t);
   const std::vector<Tri> tris = {{t[0], t[1], nv}, {t[1], t[2], nv}, {t[2], t[0], nv}};
+  m.positions[nv] = from;
+  const double allowed2 = check.allowed2(m, {t}, tris);
   for (double share : kShares) {
     m.positions[nv] = from + share * (to - from);
-    if (!faces_agree(m, old_normal, tris) || !check.passes(m, {t}, tris)) continue;
+    if (!faces_agree(m, old_normal, tris) || !check.passes(m, tris, allowed2)) continue;
     m.triangles[f] = tris[0];
     m.triangles.push_back(tris[1]);
     m.triangles.push_back(tris[2]);
@@ -214,11 +226,20 @@ bool insert(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std
     std::vector<Vec3> targets = {d.wanted};
     if (along_normal)
       targets.push_back(normal_reach(input_tree, on_edge, normalized(normalized(old_normal) + normalized(normal_u))));
+    m.positions[nv] = on_edge;
+    const double allowed2 = check.allowed2(m, {t, u}, {mine[0], mine[1], theirs[0], theirs[1]});
     for (const Vec3& target : targets)
       for (double share : kShares) {
         m.positions[nv] = on_edge + share * (target - on_edge);
+        if (g_dbg) {
+          const Vec3 n1 = normalized(old_normal), n2 = normalized(normal_u);
+          std::fprintf(stderr, "   edge k%d share %.2f n_f (%.2f %.2f %.2f) n_g (%.2f %.2f %.2f) mine %d theirs %d check %d  len %.4f  t-on %.4f\n", k, share,
+                       n1[0], n1[1], n1[2], n2[0], n2[1], n2[2], int(faces_agree(m, old_normal, mine)),
+                       int(faces_agree(m, normal_u, theirs)), int(check.passes(m, {mine[0], mine[1], theirs[0], theirs[1]}, allowed2)),
+                       norm(pb - pa), norm(target - on_edge));
+        }
         if (!faces_agree(m, old_normal, mine) || !faces_agree(m, normal_u, theirs) ||
-            !check.passes(m, {t, u}, {mine[0], mine[1], theirs[0], theirs[1]}))
+            !check.passes(m, {mine[0], mine[1], theirs[0], theirs[1]}, allowed2))
           continue;
         m.triangles[f] = mine[0];
         m.triangles.push_back(mine[1]);
@@ -319,8 +340,12 @@ bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_f
     return norm2(m.positions[a] - d.wanted) < norm2(m.positions[b] - d.wanted);
   });
   if (d.input_vertex == kMeshVertex) order = {d.vertex, d.vertex, d.vertex};
+  const bool mesh_point = strays_from_input(d);
   for (uint32_t v : order) {
-    if (v < prm.vertex_relief.size() && prm.vertex_relief[v] >= 0) continue;  // a lattice vertex stays
+    // A lattice vertex keeps its lattice place: it moves only along its relief's axis (its height, as the
+    // least-squares heights move it), and only for a straying point.
+    const bool lattice = v < prm.vertex_relief.size() && prm.vertex_relief[v] >= 0;
+    if (lattice && !mesh_point) continue;
     if (v >= moved.size() || moved[v] >= kMaxMoves) continue;  // inserted in this round, or moved enough
     const std::vector<uint32_t>& faces = vertex_faces[v];
     if (std::any_of(faces.begin(), faces.end(), [&](uint32_t f) { return touched[f] != 0; })) continue;
@@ -329,9 +354,17 @@ bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_f
     const Vec3 from = m.positions[v];
     // A missed input vertex: the vertex goes to it. A straying mesh point: the vertex moves as the point should, and
     // its faces must stray less than before.
-    const bool mesh_point = strays_from_input(d);
-    const Vec3 to = mesh_point ? from + (d.wanted - d.at) : d.wanted;
-    const double before2 = probe_deviation2(m, triangles_of(m, faces), input_tree, std::sqrt(bound2));
+    Vec3 to = mesh_point ? from + (d.wanted - d.at) : d.wanted;
+    if (lattice) {
+      const Vec3 axis = axis_vector(prm.relief_axis[static_cast<size_t>(prm.vertex_relief[v])]);
+      to = d.input_vertex == kMeshVertex ? normal_reach(input_tree, from, axis) : from + dot(to - from, axis) * axis;
+    }
+    // The faces' probe points and the vertex itself.
+    const auto deviation2 = [&] {
+      return std::max(probe_deviation2(m, triangles_of(m, faces), input_tree, std::sqrt(bound2)),
+                      input_tree.closest(m.positions[v]).distance2);
+    };
+    const double before2 = deviation2();
     const double allowed2 = mesh_point ? before2 * 0.999 : std::max(bound2, before2);
     for (double share : kShares) {
       m.positions[v] = from + share * (to - from);
@@ -340,7 +373,7 @@ bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_f
         const Vec3 n = face_normal(m, m.triangles[faces[k]]);
         ok = dot(n, normals[k]) > 1e-3 * norm(n) * norm(normals[k]);
       }
-      if (ok && probe_deviation2(m, triangles_of(m, faces), input_tree, std::sqrt(bound2)) <= allowed2) {
+      if (ok && deviation2() <= allowed2) {
         for (uint32_t f : faces) touched[f] = 1;
         ++moved[v];
         return true;
@@ -410,15 +443,15 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
         if (face_hit[i].found() && face_hit[i].distance2 > bound2)
           far.push_back({face_hit[i].face, face_hit[i].point, face_point[i], face_hit[i].distance2, kInputPoint});
     }
-    // pr>in at the mesh's vertices (an irregular vertex left out on a tip is moved back towards the input).
+    // pr>in at the mesh's vertices (an irregular vertex left out on a tip is moved back towards the input, a lattice
+    // vertex off the input along its axis).
     if (options.thin_sheets) {
       std::vector<uint32_t> a_face(m.positions.size(), UINT32_MAX);
       for (uint32_t f = 0; f < m.triangles.size(); ++f)
         for (uint32_t v : m.triangles[f]) a_face[v] = f;
       std::vector<AabbTree::Hit> vertex_hits(m.positions.size());
       tbb::parallel_for(size_t{0}, m.positions.size(), [&](size_t v) {
-        const bool lattice = v < prm.vertex_relief.size() && prm.vertex_relief[v] >= 0;
-        if (!lattice && a_face[v] != UINT32_MAX) vertex_hits[v] = input_tree.closest(m.positions[v]);
+        if (a_face[v] != UINT32_MAX) vertex_hits[v] = input_tree.closest(m.positions[v]);
       });
       for (uint32_t v = 0; v < vertex_hits.size(); ++v)
         if (vertex_hits[v].found() && vertex_hits[v].distance2 > bound2)
@@ -462,7 +495,26 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
     std::vector<uint8_t> touched(m.triangles.size(), 0);
     moved.resize(m.positions.size(), 0);
     size_t inserted_this_round = 0;
+    static const char* dbg = std::getenv("PRM_DEBUG_SITE");
+    Vec3 dbg_p{};
+    if (dbg) std::sscanf(dbg, "%lf,%lf,%lf", &dbg_p[0], &dbg_p[1], &dbg_p[2]);
     for (const Deviation& d : far) {
+      const bool near_dbg = dbg && norm2(d.wanted - dbg_p) < 0.01 * 0.01;
+      if (near_dbg) {
+        const Tri& t = m.triangles[d.face];
+        std::fprintf(stderr, "round %zu dev type %u dist %.3g face %u touched %d lattice %d%d%d at (%.4f %.4f %.4f) wanted (%.4f %.4f %.4f)\n",
+                     st.rounds, d.input_vertex, std::sqrt(d.distance2), d.face, int(touched[d.face]),
+                     int(prm.vertex_relief[t[0]] >= 0), int(t[1] < prm.vertex_relief.size() && prm.vertex_relief[t[1]] >= 0),
+                     int(t[2] < prm.vertex_relief.size() && prm.vertex_relief[t[2]] >= 0),
+                     d.at[0], d.at[1], d.at[2], d.wanted[0], d.wanted[1], d.wanted[2]);
+        for (uint32_t v : t) {
+          const Vec3& x = m.positions[v];
+          std::fprintf(stderr, "   v%u (%.4f %.4f %.4f) relief %d ij %d %d dist %.4f\n", v, x[0], x[1], x[2],
+                       v < prm.vertex_relief.size() ? prm.vertex_relief[v] : -9, v < prm.lattice_i.size() ? prm.lattice_i[v] : 0,
+                       v < prm.lattice_j.size() ? prm.lattice_j[v] : 0, std::sqrt(input_tree.closest(x).distance2));
+        }
+      }
+      g_dbg = near_dbg;
       if (st.inserted >= budget) break;
       if (touched[d.face]) continue;
       if (options.thin_sheets &&
@@ -484,6 +536,7 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
         ++inserted_this_round;
       } else {
         ++st.refused;
+        if (near_dbg) std::fprintf(stderr, "  refused\n");
       }
     }
     if (inserted_this_round == 0) break;
