@@ -6,15 +6,12 @@
 #include <array>
 #include <cmath>
 #include <vector>
-#include <cstdio>
-#include <cstdlib>
 
 #include "prm/remesh/lattice.h"
 #include "prm/vec3.h"
 
 namespace prm::remesh {
 namespace {
-bool g_dbg = false;
 
 // How far from the split edge towards the wanted point a new vertex (or a moved one) may go, tried in this order;
 // part of the way is progress too, and the next round measures what is left.
@@ -144,16 +141,10 @@ std::vector<Tri> triangles_of(const Mesh& m, const std::vector<uint32_t>& faces)
 struct StrayCheck {
   const AabbTree* input_tree = nullptr;
   double bound = 0;
-  // What the new triangles may stray (squared), with the new vertex still on the old surface: the old triangles'
-  // probes and the new ones' (the same surface on the new triangles' grids, so that a move is compared with the
-  // same points and not with a sparser sample of a place that strays all over).
-  double allowed2(const Mesh& m, const std::vector<Tri>& old_tris, const std::vector<Tri>& new_tris) const {
-    if (input_tree == nullptr) return 0;
-    return std::max({bound * bound, probe_deviation2(m, old_tris, *input_tree, bound),
-                     probe_deviation2(m, new_tris, *input_tree, bound)});
-  }
-  bool passes(const Mesh& m, const std::vector<Tri>& new_tris, double allowed2) const {
-    return input_tree == nullptr || probe_deviation2(m, new_tris, *input_tree, bound) <= allowed2;
+  bool passes(const Mesh& m, const std::vector<Tri>& old_tris, const std::vector<Tri>& new_tris) const {
+    if (input_tree == nullptr) return true;
+    const double allowed2 = std::max(bound * bound, probe_deviation2(m, old_tris, *input_tree, bound));
+    return probe_deviation2(m, new_tris, *input_tree, bound) <= allowed2;
   }
 };
 
@@ -164,11 +155,9 @@ bool split_in_three(Mesh& m, std::vector<uint8_t>& touched, const StrayCheck& ch
   const Tri t = m.triangles[f];
   const Vec3 old_normal = face_normal(m, t);
   const std::vector<Tri> tris = {{t[0], t[1], nv}, {t[1], t[2], nv}, {t[2], t[0], nv}};
-  m.positions[nv] = from;
-  const double allowed2 = check.allowed2(m, {t}, tris);
   for (double share : kShares) {
     m.positions[nv] = from + share * (to - from);
-    if (!faces_agree(m, old_normal, tris) || !check.passes(m, tris, allowed2)) continue;
+    if (!faces_agree(m, old_normal, tris) || !check.passes(m, {t}, tris)) continue;
     m.triangles[f] = tris[0];
     m.triangles.push_back(tris[1]);
     m.triangles.push_back(tris[2]);
@@ -226,20 +215,11 @@ bool insert(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std
     std::vector<Vec3> targets = {d.wanted};
     if (along_normal)
       targets.push_back(normal_reach(input_tree, on_edge, normalized(normalized(old_normal) + normalized(normal_u))));
-    m.positions[nv] = on_edge;
-    const double allowed2 = check.allowed2(m, {t, u}, {mine[0], mine[1], theirs[0], theirs[1]});
     for (const Vec3& target : targets)
       for (double share : kShares) {
         m.positions[nv] = on_edge + share * (target - on_edge);
-        if (g_dbg) {
-          const Vec3 n1 = normalized(old_normal), n2 = normalized(normal_u);
-          std::fprintf(stderr, "   edge k%d share %.2f n_f (%.2f %.2f %.2f) n_g (%.2f %.2f %.2f) mine %d theirs %d check %d  len %.4f  t-on %.4f\n", k, share,
-                       n1[0], n1[1], n1[2], n2[0], n2[1], n2[2], int(faces_agree(m, old_normal, mine)),
-                       int(faces_agree(m, normal_u, theirs)), int(check.passes(m, {mine[0], mine[1], theirs[0], theirs[1]}, allowed2)),
-                       norm(pb - pa), norm(target - on_edge));
-        }
         if (!faces_agree(m, old_normal, mine) || !faces_agree(m, normal_u, theirs) ||
-            !check.passes(m, {mine[0], mine[1], theirs[0], theirs[1]}, allowed2))
+            !check.passes(m, {t, u}, {mine[0], mine[1], theirs[0], theirs[1]}))
           continue;
         m.triangles[f] = mine[0];
         m.triangles.push_back(mine[1]);
@@ -398,7 +378,9 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
   const double bound2 = options.max_deviation * options.max_deviation;
   std::vector<std::vector<uint32_t>> vertex_faces;
   StrayCheck check;
-  if (options.thin_sheets) check = {&input_tree, options.max_deviation};
+  if (options.thin_sheets) {
+    check = {&input_tree, options.max_deviation};
+  }
   std::vector<uint8_t> moved;  // rim moves per vertex, over all rounds (at most kMaxMoves: no back and forth)
   while (st.rounds < kMaxRounds && st.inserted < budget) {
     ++st.rounds;
@@ -495,26 +477,7 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
     std::vector<uint8_t> touched(m.triangles.size(), 0);
     moved.resize(m.positions.size(), 0);
     size_t inserted_this_round = 0;
-    static const char* dbg = std::getenv("PRM_DEBUG_SITE");
-    Vec3 dbg_p{};
-    if (dbg) std::sscanf(dbg, "%lf,%lf,%lf", &dbg_p[0], &dbg_p[1], &dbg_p[2]);
     for (const Deviation& d : far) {
-      const bool near_dbg = dbg && norm2(d.wanted - dbg_p) < 0.01 * 0.01;
-      if (near_dbg) {
-        const Tri& t = m.triangles[d.face];
-        std::fprintf(stderr, "round %zu dev type %u dist %.3g face %u touched %d lattice %d%d%d at (%.4f %.4f %.4f) wanted (%.4f %.4f %.4f)\n",
-                     st.rounds, d.input_vertex, std::sqrt(d.distance2), d.face, int(touched[d.face]),
-                     int(prm.vertex_relief[t[0]] >= 0), int(t[1] < prm.vertex_relief.size() && prm.vertex_relief[t[1]] >= 0),
-                     int(t[2] < prm.vertex_relief.size() && prm.vertex_relief[t[2]] >= 0),
-                     d.at[0], d.at[1], d.at[2], d.wanted[0], d.wanted[1], d.wanted[2]);
-        for (uint32_t v : t) {
-          const Vec3& x = m.positions[v];
-          std::fprintf(stderr, "   v%u (%.4f %.4f %.4f) relief %d ij %d %d dist %.4f\n", v, x[0], x[1], x[2],
-                       v < prm.vertex_relief.size() ? prm.vertex_relief[v] : -9, v < prm.lattice_i.size() ? prm.lattice_i[v] : 0,
-                       v < prm.lattice_j.size() ? prm.lattice_j[v] : 0, std::sqrt(input_tree.closest(x).distance2));
-        }
-      }
-      g_dbg = near_dbg;
       if (st.inserted >= budget) break;
       if (touched[d.face]) continue;
       if (options.thin_sheets &&
@@ -536,7 +499,6 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
         ++inserted_this_round;
       } else {
         ++st.refused;
-        if (near_dbg) std::fprintf(stderr, "  refused\n");
       }
     }
     if (inserted_this_round == 0) break;
