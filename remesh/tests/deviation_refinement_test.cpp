@@ -1,0 +1,59 @@
+// The local refinement's step for a lattice vertex off the input (deviation_refinement.h, issue 22): bunny00's worst
+// place was a lattice vertex 2e-3 of the diagonal off a smooth part of the input, which the refinement did not move
+// (lattice vertices stayed) and whose edges no split could bring down. It moves along its relief's axis only (its
+// height), keeping its lattice place and its labels, with no vertex inserted.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "../src/deviation_refinement.h"
+#include "prm/aabb_tree.h"
+#include "prm/vec3.h"
+#include "test_meshes.h"
+
+namespace prm::remesh {
+namespace {
+
+TEST(DeviationRefinement, LatticeVertexOffTheInputMovesAlongItsAxis) {
+  const Mesh input = test::icosphere(2, 40.0);
+  const AabbTree tree(input);
+  PrmMesh prm;
+  prm.mesh = input;
+  uint32_t pole = 0;  // the vertex of largest z: the relief's axis +z is its normal
+  for (uint32_t v = 1; v < prm.mesh.positions.size(); ++v)
+    if (prm.mesh.positions[v][2] > prm.mesh.positions[pole][2]) pole = v;
+  prm.vertex_relief.assign(prm.mesh.positions.size(), 0);
+  prm.lattice_i.assign(prm.mesh.positions.size(), 0);
+  prm.lattice_j.assign(prm.mesh.positions.size(), 0);
+  prm.lattice_i[pole] = 3;
+  prm.lattice_j[pole] = -2;
+  prm.relief_axis = {4};  // +z
+  // Off the input sideways and outwards: along its axis it can come back to the sphere, not to where it was.
+  const Vec3 off = prm.mesh.positions[pole] + Vec3{2.0, 0.0, 4.0};
+  prm.mesh.positions[pole] = off;
+  const size_t vertices = prm.mesh.positions.size();
+  DeviationRefinementOptions o;
+  o.max_deviation = 1.0;
+  const DeviationRefinementStats st = refine_deviations(prm, input, tree, o);
+  const Vec3 now = prm.mesh.positions[pole];
+  std::printf("pole moved from (%.3f %.3f %.3f) to (%.3f %.3f %.3f), %.3f from the input; %zu moved, %zu inserted\n",
+              off[0], off[1], off[2], now[0], now[1], now[2], std::sqrt(tree.closest(now).distance2), st.moved,
+              st.inserted);
+  EXPECT_EQ(now[0], off[0]);  // its lattice place
+  EXPECT_EQ(now[1], off[1]);
+  EXPECT_LT(tree.closest(now).distance2, o.max_deviation * o.max_deviation);
+  EXPECT_GE(st.moved, 1u);
+  EXPECT_EQ(st.inserted, 0u);
+  EXPECT_EQ(prm.mesh.positions.size(), vertices);
+  EXPECT_EQ(prm.vertex_relief[pole], 0);
+  EXPECT_EQ(prm.lattice_i[pole], 3);
+  EXPECT_EQ(prm.lattice_j[pole], -2);
+  // Without the thin-sheet steps (the first refinement) a lattice vertex stays where it is.
+  prm.mesh.positions[pole] = off;
+  o.thin_sheets = false;
+  refine_deviations(prm, input, tree, o);
+  EXPECT_EQ(prm.mesh.positions[pole][2], off[2]);
+}
+
+}  // namespace
+}  // namespace prm::remesh
