@@ -129,6 +129,7 @@ double probe_deviation2(const Mesh& m, const std::vector<Tri>& tris, const AabbT
   }
   return worst;
 }
+// The triangles of some faces.
 std::vector<Tri> triangles_of(const Mesh& m, const std::vector<uint32_t>& faces) {
   std::vector<Tri> tris;
   for (uint32_t f : faces) tris.push_back(m.triangles[f]);
@@ -265,8 +266,6 @@ bool insert_on_facing_face(Mesh& m, const std::vector<std::vector<uint32_t>>& ve
   return false;
 }
 
-
-
 // A triangle that strays from the input at a point near its edge a-b (pr>in: it bridges a notch or the fold of a
 // thin sheet) may follow the input with that edge flipped, at no cost in vertices: the pair (c, a, b), (b, a, e)
 // becomes (c, a, e), (c, e, b) when c-e is not an edge yet, neither new face turns over against the pair, and the
@@ -310,7 +309,9 @@ bool flip_straying_edge(Mesh& m, const std::vector<std::vector<uint32_t>>& verte
 // vertex lies on the seam that closes the sheet, between irregular vertices. Moving one of them out to the input
 // vertex (or part of the way) follows the tip at no cost in vertices. Tries the face's irregular vertices, nearest
 // the wanted point first; a move is kept when no face around the vertex turns over and the faces' probe points stay
-// within the bound (or within what they strayed before). False when no move is kept.
+// within the bound (or within what they strayed before). For a straying point (pr>in) a lattice vertex may move too,
+// along its relief's axis only (a lattice vertex off a smooth part of the input: CGAL's bunny00), when its faces and
+// itself then stray less. False when no move is kept.
 bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, const PrmMesh& prm,
                      const AabbTree& input_tree, double bound2, std::vector<uint8_t>& touched,
                      std::vector<uint8_t>& moved, const Deviation& d) {
