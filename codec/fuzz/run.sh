@@ -16,7 +16,8 @@
 # memory follows what it decodes, spec §4.5, so a larger footprint is a finding), JOBS (build jobs, default 2),
 # NICE (default 15), RUNS (when set, stop each target after this many executions, or at SECONDS if that is not 0 and
 # comes first),
-# ASAN_PASS (default 1; 0 skips the ASan pass).
+# ASAN_PASS (default 1; 0 skips the ASan pass), LOG_TAG (names this run's libFuzzer log, so that two runs of a target,
+# one per core, can share its corpus: libFuzzer adds units under content-hash names).
 #
 # Corpora live in $FUZZ_DIR/corpus/<target>/ and grow from run to run (they stay out of git); crashes, leaks, timeouts
 # and out-of-memory inputs land in $FUZZ_DIR/artifacts/. Each run appends one line per target and pass to
@@ -108,7 +109,7 @@ for t in $targets; do
   limit=""  # whichever comes first
   [ "$seconds" != 0 ] && limit="-max_total_time=$seconds"
   [ -n "$runs" ] && limit="$limit -runs=$runs"
-  log=$fuzz_dir/$t.log
+  log=$fuzz_dir/$t${LOG_TAG:+.$LOG_TAG}.log  # LOG_TAG: several runs of one target side by side (one per core)
   if [ "$seconds" != 0 ] || [ -n "$runs" ]; then
     echo "== $t: $limit, corpus $corpus" >&2
     status=0

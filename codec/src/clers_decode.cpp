@@ -156,7 +156,7 @@ Status decode_symbols(const uint8_t* clers, size_t clers_size, uint64_t clers_of
 
   // §4.5 Nothing below is sized by nt or nv before the triangles are decoded: Spirale Reversi grows as it goes.
   SpiraleReversi sr;
-  sr.init(nt, nv);
+  sr.init(nt, nv, seam_context);
   RangeDecoder rc;
   rc.init(clers, clers_size);
   auto models = std::make_unique<ClersModels>();

@@ -262,7 +262,7 @@ Status write_connectivity(const ConnectivityPlan& plan, bool seam_context, std::
 
   const uint32_t nt = plan.mesh.num_triangles();
   SpiraleReversi sr;
-  sr.init(nt, plan.mesh.num_vertices);
+  sr.init(nt, plan.mesh.num_vertices, seam_context);
   sr.reserve(nt);  // the encoder's own counts
   RangeEncoder rc;
   auto models = std::make_unique<ClersModels>();

@@ -7,7 +7,7 @@
 namespace prm::codec {
 
 // §6.4.1 Initial state: every edge open, no records, empty stack. Nothing is sized by the claimed counts (§4.5).
-void SpiraleReversi::init(uint32_t num_triangles, uint32_t num_vertices) {
+void SpiraleReversi::init(uint32_t num_triangles, uint32_t num_vertices, bool seam_context) {
   num_triangles_ = num_triangles;
   num_vertices_ = num_vertices;
   opp_.reset(size_t{3} * num_triangles, -1);
@@ -16,6 +16,7 @@ void SpiraleReversi::init(uint32_t num_triangles, uint32_t num_vertices) {
   stack_.clear();
   closed_ = 0;
   decoded_ = 0;
+  seam_tracked_ = kSeamShortcut && seam_context;
   error_.clear();
   non_manifold_ = false;
 }
@@ -67,6 +68,8 @@ int64_t SpiraleReversi::open_edge_out_of(uint32_t c) {
 uint32_t SpiraleReversi::gate_start_seam() {
   if (stack_.empty()) return 0;
   const uint32_t c0 = 3 * stack_.back();
+  // No odd record shares a triangle with the gate's start vertex (Record::odd_near): Seam is 0 without the walk.
+  if (kSeamShortcut && seam_tracked_ && records_[find(rec_[c0])].odd_near == 0) return 0;
   auto odd = [&](uint32_t c) { return records_[find(rec_[c])].odd != 0; };
   // One side: 1 odd vertex found, 0 the fan closed (every triangle seen), 2 an open edge or the bound. Crossing the
   // edge opposite turn(c) into the triangle of d, the next triangle's two other vertices are the far end of that
@@ -90,7 +93,7 @@ uint32_t SpiraleReversi::gate_start_seam() {
 
 // §6.4.8 Closing a vertex gives it the next id, counting down from the number of vertices, so that ids end up in
 // forward order of discovery (§6.6).
-bool SpiraleReversi::close_vertex(uint32_t record) {
+bool SpiraleReversi::close_vertex(uint32_t record, uint32_t c) {
   const uint32_t r = find(record);
   Record& x = records_[r];
   if (x.id >= 0) return fail("a vertex is closed twice");
@@ -98,7 +101,28 @@ bool SpiraleReversi::close_vertex(uint32_t record) {
   x.id = static_cast<int32_t>(num_vertices_ - 1 - closed_);
   x.odd = x.count != 6;
   ++closed_;
+  if (kSeamShortcut && x.odd && seam_tracked_) note_odd(c, r);
   return true;
+}
+
+// Rotates about the vertex of c across glued edges and sets odd_near of the two other corners' records of every
+// triangle met. The rotation meets every corner of r only if it closes after exactly count(r) triangles
+// (corners of one record are joined only through glued edges, §6.4.2); otherwise tracking stops.
+void SpiraleReversi::note_odd(uint32_t c, uint32_t r) {
+  const uint32_t count = records_[r].count;
+  uint32_t k = c, n = 0;
+  do {
+    const int32_t d = opp_[corner_next(k)];
+    if (d < 0 || n == count) {
+      seam_tracked_ = false;
+      return;
+    }
+    records_[find(rec_[corner_next(k)])].odd_near = 1;
+    records_[find(rec_[corner_prev(k)])].odd_near = 1;
+    ++n;
+    k = corner_next(static_cast<uint32_t>(d));
+  } while (k != c);
+  if (n != count) seam_tracked_ = false;
 }
 
 // §6.4.3-6.4.5 One symbol applied to triangle t (corners 3t: a, 3t+1: b, 3t+2: v; gate a->b, right edge b->v,
@@ -129,7 +153,7 @@ bool SpiraleReversi::apply(uint32_t t, uint8_t symbol) {
       glue(b, static_cast<uint32_t>(e));
       set_corner(a, rec_[corner_next(static_cast<uint32_t>(e))]);
       stack_.back() = t;
-      return close_vertex(rec_[v]);
+      return close_vertex(rec_[v], v);
     }
     case kL:  // §6.4.5 attach by the right edge; a is new
       glue(a, jg);
@@ -156,8 +180,7 @@ bool SpiraleReversi::apply(uint32_t t, uint8_t symbol) {
       glue(b, kg);
       set_corner(b, rec_[jb]);
       set_corner(a, rec_[ka]);
-      records_[r2].parent = r1;  // §6.4.5 the two records of the tip become one
-      records_[r1].count += records_[r2].count;
+      merge(r1, r2);  // §6.4.5 the two records of the tip become one
       set_corner(v, r1);
       stack_.pop_back();
       stack_.back() = t;
@@ -192,8 +215,7 @@ bool SpiraleReversi::apply_handle(uint32_t t, const HandleEvent& event, uint32_t
   glue(b, pc);
   set_corner(b, rec_[jb]);
   set_corner(a, rec_[corner_next(pc)]);
-  records_[rq].parent = r1;
-  records_[r1].count += records_[rq].count;
+  merge(r1, rq);
   set_corner(v, r1);
   stack_.back() = t;
   return true;
@@ -226,7 +248,7 @@ bool SpiraleReversi::close_component(uint32_t t0) {
   // §6.6 ids in forward order: r, q, p are the last three closed in reverse.
   const uint32_t rr = find(rec_[r]), rq = find(rec_[q]), rp = find(rec_[p]);
   if (rr == rq || rq == rp || rr == rp) return fail("the first triangle of a component is degenerate");
-  return close_vertex(rr) && close_vertex(rq) && close_vertex(rp);
+  return close_vertex(rr, r) && close_vertex(rq, q) && close_vertex(rp, p);
 }
 
 // §6.4.8 / §6.8 Final ids and validation: every edge glued, every record closed, and the result an oriented closed

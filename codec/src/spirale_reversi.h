@@ -23,6 +23,14 @@
 
 namespace prm::codec {
 
+// §6.5.2 The Seam shortcut (SpiraleReversi::Record::odd_near) is left out of the wasm module, whose size is an issue
+// 20 target: it cost 200 B gzipped there (web/README.md "hdecode4").
+#if defined(__wasm__)
+constexpr bool kSeamShortcut = false;
+#else
+constexpr bool kSeamShortcut = true;
+#endif
+
 struct HandleEvent {     // §6.4.6
   uint32_t triangle;     // forward index of the S triangle whose left branch was consumed
   uint32_t partner;      // forward index of the triangle across its left edge (> triangle)
@@ -32,8 +40,9 @@ struct HandleEvent {     // §6.4.6
 class SpiraleReversi {
  public:
   // §6.4.1 Starts a closed mesh of `num_triangles` triangles and `num_vertices` vertices (dummies included); allocates
-  // nothing in proportion to them (§4.5).
-  void init(uint32_t num_triangles, uint32_t num_vertices);
+  // nothing in proportion to them (§4.5). `seam_context`: whether gate_start_seam() will be asked (§6.5.2); without
+  // it the records' odd_near is not kept.
+  void init(uint32_t num_triangles, uint32_t num_vertices, bool seam_context = false);
   // Room ahead for the next `triangles` triangles (at most all of them): the encoder's own count, or the decoder's
   // bound from the bytes of the symbols (§4.5, kReserveTrianglesPerByte), never the count the stream claims alone.
   void reserve(uint32_t triangles);
@@ -71,7 +80,7 @@ class SpiraleReversi {
   }
   uint32_t new_record() {
     const uint32_t r = static_cast<uint32_t>(records_.size());
-    records_.push_back({r, 0, -1, 0});
+    records_.push_back({r, 0, -1, 0, 0});
     return r;
   }
   PRM_WASM_INLINE void set_corner(uint32_t c, uint32_t record) {
@@ -79,13 +88,26 @@ class SpiraleReversi {
     const uint32_t r = find(record);
     Record& x = records_[r];
     ++x.count;
-    if (x.id >= 0) x.odd = x.count != 6;
+    if (x.id >= 0) {
+      x.odd = x.count != 6;
+      if (kSeamShortcut) seam_tracked_ = false;  // a closed vertex gains a triangle (no valid stream does)
+    }
   }
   void glue(uint32_t c1, uint32_t c2) {
     opp_[c1] = static_cast<int32_t>(c2);
     opp_[c2] = static_cast<int32_t>(c1);
   }
-  bool close_vertex(uint32_t record);
+  // Closes the vertex of record `record`, that of corner c.
+  bool close_vertex(uint32_t record, uint32_t c);
+  // §6.5.2 The vertex of corner c (root record r) is closed with a triangle count other than 6: sets odd_near of
+  // every record that shares a triangle with it.
+  void note_odd(uint32_t c, uint32_t r);
+  // §6.4.5 Record r2 joins record r1 (both roots, both open).
+  void merge(uint32_t r1, uint32_t r2) {
+    records_[r2].parent = r1;
+    records_[r1].count += records_[r2].count;
+    if (kSeamShortcut) records_[r1].odd_near |= records_[r2].odd_near;
+  }
   bool fail(const char* message);
   // Triangle t joins the tables. The callers apply t = T - 1 down to 0, one each (a contract, asserted).
   void add_triangle(uint32_t t) {
@@ -106,14 +128,22 @@ class SpiraleReversi {
   // before), and whether it is closed with a triangle count other than 6 (§6.5.2 Seam; kept with count and id: a
   // root's count and id change only in set_corner and close_vertex, and records merge only while open). One struct,
   // so that a find and the fields it leads to share a cache line.
+  //
+  // odd_near (§6.5.2 Seam without the walk): for a root, 1 if an odd record may share a triangle with one of its
+  // corners, 0 if none does; kept while seam_tracked_. Every glued edge joins corners of the same records at both
+  // ends (§6.4.2), so the Seam walk from a corner of record X only meets triangles with a corner of X, and tests
+  // records that share them: with odd_near 0 it finds no odd vertex and Seam is 0. A record becomes odd only when it
+  // is closed (note_odd marks the records of all its triangles, its fan being complete) or when a closed record gains
+  // a triangle (no valid stream does; tracking stops, and every Seam is walked from then on).
   struct Record {
     uint32_t parent, count;
     int32_t id;
-    uint32_t odd;
+    uint16_t odd, odd_near;
   };
   std::vector<Record> records_;
   std::vector<uint32_t> stack_;
   uint32_t num_triangles_ = 0, num_vertices_ = 0, closed_ = 0, decoded_ = 0;
+  bool seam_tracked_ = true;  // odd_near is exact (see Record)
   std::string error_;
   bool non_manifold_ = false;
 };
