@@ -116,13 +116,25 @@ struct Deviation {
 constexpr uint32_t kMeshPoint = UINT32_MAX, kInputPoint = UINT32_MAX - 1, kMeshVertex = UINT32_MAX - 2;
 bool strays_from_input(const Deviation& d) { return d.input_vertex == kMeshPoint || d.input_vertex == kMeshVertex; }
 
-// The largest squared distance to the input of the probe points (grid_divisions at `bound`) of some triangles.
-double probe_deviation2(const Mesh& m, const std::vector<Tri>& tris, const AabbTree& input_tree, double bound) {
+// Calls visit(x) for the probe points of triangle (a, b, c): dense, its grid_divisions grid at `bound`; else its
+// centroid and its edges' midpoints (kProbes).
+template <class Visit>
+void for_each_probe(const Vec3& a, const Vec3& b, const Vec3& c, bool dense, double bound, Visit&& visit) {
+  if (dense) {
+    for_each_grid_point(a, b, c, grid_divisions(a, b, c, bound), visit);
+  } else {
+    for (const auto& w : kProbes) visit(w[0] * a + w[1] * b + w[2] * c);
+  }
+}
+
+// The largest squared distance to the input of the probe points (for_each_probe) of some triangles.
+double probe_deviation2(const Mesh& m, const std::vector<Tri>& tris, const AabbTree& input_tree, double bound,
+                        bool dense) {
   double worst = 0;
   AabbTree::Hit hint;
   for (const Tri& t : tris) {
     const Vec3 &a = m.positions[t[0]], &b = m.positions[t[1]], &c = m.positions[t[2]];
-    for_each_grid_point(a, b, c, grid_divisions(a, b, c, bound), [&](const Vec3& x) {
+    for_each_probe(a, b, c, dense, bound, [&](const Vec3& x) {
       input_tree.closest(x, hint);
       worst = std::max(worst, hint.distance2);
     });
@@ -142,10 +154,11 @@ std::vector<Tri> triangles_of(const Mesh& m, const std::vector<uint32_t>& faces)
 struct StrayCheck {
   const AabbTree* input_tree = nullptr;
   double bound = 0;
+  bool dense = true;  // DeviationRefinementOptions::dense_probes
   bool passes(const Mesh& m, const std::vector<Tri>& old_tris, const std::vector<Tri>& new_tris) const {
     if (input_tree == nullptr) return true;
-    const double allowed2 = std::max(bound * bound, probe_deviation2(m, old_tris, *input_tree, bound));
-    return probe_deviation2(m, new_tris, *input_tree, bound) <= allowed2;
+    const double allowed2 = std::max(bound * bound, probe_deviation2(m, old_tris, *input_tree, bound, dense));
+    return probe_deviation2(m, new_tris, *input_tree, bound, dense) <= allowed2;
   }
 };
 
@@ -271,7 +284,7 @@ bool insert_on_facing_face(Mesh& m, const std::vector<std::vector<uint32_t>>& ve
 // becomes (c, a, e), (c, e, b) when c-e is not an edge yet, neither new face turns over against the pair, and the
 // new faces' probe points stray less than the old ones'. False when the flip is not made.
 bool flip_straying_edge(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, const AabbTree& input_tree,
-                        double bound, std::vector<uint8_t>& touched, const Deviation& d) {
+                        double bound, bool dense, std::vector<uint8_t>& touched, const Deviation& d) {
   const uint32_t f = d.face;
   const Tri t = m.triangles[f];
   const std::array<double, 3> bc = barycentric(m, t, d.at);
@@ -291,11 +304,12 @@ bool flip_straying_edge(Mesh& m, const std::vector<std::vector<uint32_t>>& verte
   }
   const Vec3 pair_normal = face_normal(m, t) + face_normal(m, u);
   const Tri old_f = t, old_g = u;
-  const double before = probe_deviation2(m, {m.triangles[f], m.triangles[static_cast<size_t>(g)]}, input_tree, bound);
+  const double before =
+      probe_deviation2(m, {m.triangles[f], m.triangles[static_cast<size_t>(g)]}, input_tree, bound, dense);
   m.triangles[f] = {c, a, e};
   m.triangles[static_cast<size_t>(g)] = {c, e, b};
   if (faces_agree(m, pair_normal, {m.triangles[f], m.triangles[static_cast<size_t>(g)]}) &&
-      probe_deviation2(m, {m.triangles[f], m.triangles[static_cast<size_t>(g)]}, input_tree, bound) < before) {
+      probe_deviation2(m, {m.triangles[f], m.triangles[static_cast<size_t>(g)]}, input_tree, bound, dense) < before) {
     touched[f] = 1;
     touched[static_cast<size_t>(g)] = 1;
     return true;
@@ -313,8 +327,8 @@ bool flip_straying_edge(Mesh& m, const std::vector<std::vector<uint32_t>>& verte
 // along its relief's axis only (a lattice vertex off a smooth part of the input: CGAL's bunny00), when its faces and
 // itself then stray less. False when no move is kept.
 bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, const PrmMesh& prm,
-                     const AabbTree& input_tree, double bound2, std::vector<uint8_t>& touched,
-                     std::vector<uint8_t>& moved, const Deviation& d) {
+                     const AabbTree& input_tree, const DeviationRefinementOptions& options, double bound2,
+                     std::vector<uint8_t>& touched, std::vector<uint8_t>& moved, const Deviation& d) {
   const Tri t = m.triangles[d.face];
   std::array<uint32_t, 3> order = {t[0], t[1], t[2]};
   std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
@@ -326,7 +340,7 @@ bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_f
     // A lattice vertex keeps its lattice place: it moves only along its relief's axis (its height, as the
     // least-squares heights move it), and only for a straying point.
     const bool lattice = v < prm.vertex_relief.size() && prm.vertex_relief[v] >= 0;
-    if (lattice && !mesh_point) continue;
+    if (lattice && (!mesh_point || !options.lattice_moves)) continue;
     if (v >= moved.size() || moved[v] >= kMaxMoves) continue;  // inserted in this round, or moved enough
     const std::vector<uint32_t>& faces = vertex_faces[v];
     if (std::any_of(faces.begin(), faces.end(), [&](uint32_t f) { return touched[f] != 0; })) continue;
@@ -340,10 +354,11 @@ bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_f
       const Vec3 axis = axis_vector(prm.relief_axis[static_cast<size_t>(prm.vertex_relief[v])]);
       to = d.input_vertex == kMeshVertex ? normal_reach(input_tree, from, axis) : from + dot(to - from, axis) * axis;
     }
-    // The faces' probe points and the vertex itself.
+    // The faces' probe points and (lattice_moves) the vertex itself.
     const auto deviation2 = [&] {
-      return std::max(probe_deviation2(m, triangles_of(m, faces), input_tree, std::sqrt(bound2)),
-                      input_tree.closest(m.positions[v]).distance2);
+      const double faces2 =
+          probe_deviation2(m, triangles_of(m, faces), input_tree, options.max_deviation, options.dense_probes);
+      return options.lattice_moves ? std::max(faces2, input_tree.closest(m.positions[v]).distance2) : faces2;
     };
     const double before2 = deviation2();
     const double allowed2 = mesh_point ? before2 * 0.999 : std::max(bound2, before2);
@@ -379,14 +394,25 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
   const double bound2 = options.max_deviation * options.max_deviation;
   std::vector<std::vector<uint32_t>> vertex_faces;
   StrayCheck check;
-  if (options.thin_sheets) {
-    check = {&input_tree, options.max_deviation};
-  }
+  if (options.thin_sheets && options.stray_check) check = {&input_tree, options.max_deviation, options.dense_probes};
   std::vector<uint8_t> moved;  // rim moves per vertex, over all rounds (at most kMaxMoves: no back and forth)
   while (st.rounds < kMaxRounds && st.inserted < budget) {
     ++st.rounds;
+    // What is measured: the mesh, or (rounded) the mesh as the stream will hold it, every coordinate rounded to the
+    // frame's step (the search measures that too; a knife edge refined to the bound can end above it once rounded).
+    // The moves and insertions change the mesh itself; the next round measures them rounded.
+    Mesh rounded_mesh;
+    if (options.rounded) {
+      rounded_mesh.triangles = m.triangles;
+      rounded_mesh.positions.resize(m.positions.size());
+      for (size_t v = 0; v < m.positions.size(); ++v)
+        for (int a = 0; a < 3; ++a)
+          rounded_mesh.positions[v][static_cast<size_t>(a)] =
+              prm.frame.to_real(prm.frame.quantize(m.positions[v][static_cast<size_t>(a)], a), a);
+    }
+    const Mesh& measured = options.rounded ? rounded_mesh : m;
     // in>pr: the input vertices far from the mesh.
-    const AabbTree tree(m);
+    const AabbTree tree(measured);
     std::vector<AabbTree::Hit> hits(input.positions.size());
     tbb::parallel_for(size_t{0}, input.positions.size(), [&](size_t v) {
       if (used[v]) hits[v] = tree.closest(input.positions[v]);
@@ -415,7 +441,13 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
         const Vec3 &a = input.positions[t[0]], &b = input.positions[t[1]], &c = input.positions[t[2]];
         AabbTree::Hit hint;
         for_each_grid_point(a, b, c, grid_divisions(a, b, c, options.max_deviation), [&](const Vec3& x) {
-          tree.closest(x, hint);
+          // Without the notch steps, each query alone, as the first refinement did (a hint may pick another face
+          // where two are as close, e.g. at an edge, and that face is the one split).
+          if (options.dense_probes) {
+            tree.closest(x, hint);
+          } else {
+            hint = tree.closest(x);
+          }
           if (hint.found() && (!face_hit[i].found() || hint.distance2 > face_hit[i].distance2)) {
             face_hit[i] = hint;
             face_point[i] = x;
@@ -434,11 +466,14 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
         for (uint32_t v : m.triangles[f]) a_face[v] = f;
       std::vector<AabbTree::Hit> vertex_hits(m.positions.size());
       tbb::parallel_for(size_t{0}, m.positions.size(), [&](size_t v) {
-        if (a_face[v] != UINT32_MAX) vertex_hits[v] = input_tree.closest(m.positions[v]);
+        const bool lattice = v < prm.vertex_relief.size() && prm.vertex_relief[v] >= 0;
+        if ((options.lattice_moves || !lattice) && a_face[v] != UINT32_MAX)
+          vertex_hits[v] = input_tree.closest(measured.positions[v]);
       });
       for (uint32_t v = 0; v < vertex_hits.size(); ++v)
         if (vertex_hits[v].found() && vertex_hits[v].distance2 > bound2)
-          far.push_back({a_face[v], m.positions[v], vertex_hits[v].point, vertex_hits[v].distance2, kMeshVertex, v});
+          far.push_back(
+              {a_face[v], measured.positions[v], vertex_hits[v].point, vertex_hits[v].distance2, kMeshVertex, v});
     }
     // pr>in: the mesh's triangles with a point far from the input (thin sheets: on the grid Metro-like dense probes
     // see, grid_divisions; else the centroid and the edges' midpoints).
@@ -446,20 +481,20 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
     std::vector<Vec3> probe_point(m.triangles.size());
     tbb::parallel_for(size_t{0}, m.triangles.size(), [&](size_t f) {
       const Tri& t = m.triangles[f];
-      const Vec3 &a = m.positions[t[0]], &b = m.positions[t[1]], &c = m.positions[t[2]];
+      const Vec3 &a = measured.positions[t[0]], &b = measured.positions[t[1]], &c = measured.positions[t[2]];
       AabbTree::Hit hint;
       const auto visit = [&](const Vec3& x) {
-        input_tree.closest(x, hint);
+        if (options.dense_probes) {
+          input_tree.closest(x, hint);
+        } else {
+          hint = input_tree.closest(x);
+        }
         if (hint.found() && (!probe_hit[f].found() || hint.distance2 > probe_hit[f].distance2)) {
           probe_hit[f] = hint;
           probe_point[f] = x;
         }
       };
-      if (options.thin_sheets) {
-        for_each_grid_point(a, b, c, grid_divisions(a, b, c, options.max_deviation), visit);
-      } else {
-        for (const auto& w : kProbes) visit(w[0] * a + w[1] * b + w[2] * c);
-      }
+      for_each_probe(a, b, c, options.thin_sheets && options.dense_probes, options.max_deviation, visit);
     });
     for (uint32_t f = 0; f < m.triangles.size(); ++f)
       if (probe_hit[f].found() && probe_hit[f].distance2 > bound2)
@@ -482,19 +517,19 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
       if (st.inserted >= budget) break;
       if (touched[d.face]) continue;
       if (options.thin_sheets &&
-          move_rim_vertex(m, vertex_faces, prm, input_tree, bound2, touched, moved, d)) {
+          move_rim_vertex(m, vertex_faces, prm, input_tree, options, bound2, touched, moved, d)) {
         ++st.moved;
         ++inserted_this_round;
         continue;
       }
       if (d.input_vertex == kMeshVertex) continue;  // moved or left
       if (options.thin_sheets && d.input_vertex == kMeshPoint &&
-          flip_straying_edge(m, vertex_faces, input_tree, options.max_deviation, touched, d)) {
+          flip_straying_edge(m, vertex_faces, input_tree, options.max_deviation, options.dense_probes, touched, d)) {
         ++st.flipped;
         ++inserted_this_round;
         continue;
       }
-      if (insert(m, vertex_faces, touched, input_tree, check, options.thin_sheets, d) ||
+      if (insert(m, vertex_faces, touched, input_tree, check, options.thin_sheets && options.normal_reach, d) ||
           (options.thin_sheets && !strays_from_input(d) && insert_on_facing_face(m, vertex_faces, touched, check, d))) {
         ++st.inserted;
         ++inserted_this_round;

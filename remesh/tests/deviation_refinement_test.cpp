@@ -28,6 +28,8 @@ TEST(DeviationRefinement, LatticeVertexOffTheInputMovesAlongItsAxis) {
   prm.lattice_i[pole] = 3;
   prm.lattice_j[pole] = -2;
   prm.relief_axis = {4};  // +z
+  prm.frame.origin = {-100, -100, -100};  // a frame as fine as 1/20 of the bound (the refinement measures rounded)
+  prm.frame.step = 0.05;
   // Off the input sideways and outwards: along its axis it can come back to the sphere, not to where it was.
   const Vec3 off = prm.mesh.positions[pole] + Vec3{2.0, 0.0, 4.0};
   prm.mesh.positions[pole] = off;
@@ -48,7 +50,16 @@ TEST(DeviationRefinement, LatticeVertexOffTheInputMovesAlongItsAxis) {
   EXPECT_EQ(prm.vertex_relief[pole], 0);
   EXPECT_EQ(prm.lattice_i[pole], 3);
   EXPECT_EQ(prm.lattice_j[pole], -2);
+  // Without the lattice moves (what --max-error runs: the notch steps off) it stays where it is, and the pole's
+  // faces (the mesh points that stray) are split instead.
+  prm.mesh.positions[pole] = off;
+  DeviationRefinementOptions no_moves = o;
+  no_moves.lattice_moves = false;
+  const DeviationRefinementStats sn = refine_deviations(prm, input, tree, no_moves);
+  EXPECT_EQ(prm.mesh.positions[pole][2], off[2]);
+  EXPECT_EQ(sn.moved, 0u);
   // Without the thin-sheet steps (the first refinement) a lattice vertex stays where it is.
+  prm.mesh = input;
   prm.mesh.positions[pole] = off;
   o.thin_sheets = false;
   refine_deviations(prm, input, tree, o);
