@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <vector>
 
+#include "prm/point_triangle_distance.h"
 #include "prm/remesh/lattice.h"
 #include "prm/vec3.h"
 
@@ -325,7 +327,9 @@ bool flip_straying_edge(Mesh& m, const std::vector<std::vector<uint32_t>>& verte
 // the wanted point first; a move is kept when no face around the vertex turns over and the faces' probe points stay
 // within the bound (or within what they strayed before). For a straying point (pr>in) a lattice vertex may move too,
 // along its relief's axis only (a lattice vertex off a smooth part of the input: CGAL's bunny00), when its faces and
-// itself then stray less. False when no move is kept.
+// itself then stray less; and (lattice_reach) for a missed input point, along its axis towards it, when the point
+// then lies at least 10% nearer its faces and they stay within the bound (a move instead of a new vertex, which
+// costs more bytes). False when no move is kept.
 bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, const PrmMesh& prm,
                      const AabbTree& input_tree, const DeviationRefinementOptions& options, double bound2,
                      std::vector<uint8_t>& touched, std::vector<uint8_t>& moved, const Deviation& d) {
@@ -338,9 +342,9 @@ bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_f
   const bool mesh_point = strays_from_input(d);
   for (uint32_t v : order) {
     // A lattice vertex keeps its lattice place: it moves only along its relief's axis (its height, as the
-    // least-squares heights move it), and only for a straying point.
+    // least-squares heights move it), for a straying point or (lattice_reach) towards a missed input point.
     const bool lattice = v < prm.vertex_relief.size() && prm.vertex_relief[v] >= 0;
-    if (lattice && (!mesh_point || !options.lattice_moves)) continue;
+    if (lattice && (!options.lattice_moves || (!mesh_point && !options.lattice_reach))) continue;
     if (v >= moved.size() || moved[v] >= kMaxMoves) continue;  // inserted in this round, or moved enough
     const std::vector<uint32_t>& faces = vertex_faces[v];
     if (std::any_of(faces.begin(), faces.end(), [&](uint32_t f) { return touched[f] != 0; })) continue;
@@ -360,6 +364,18 @@ bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_f
           probe_deviation2(m, triangles_of(m, faces), input_tree, options.max_deviation, options.dense_probes);
       return options.lattice_moves ? std::max(faces2, input_tree.closest(m.positions[v]).distance2) : faces2;
     };
+    // A missed input point a lattice vertex moves for: its distance to the vertex's faces, which the move must cut
+    // by at least 10% (the axis may pass it by).
+    const auto missed2 = [&] {
+      double best = std::numeric_limits<double>::infinity();
+      for (uint32_t f : faces) {
+        const Tri& w = m.triangles[f];
+        best = std::min(best, point_triangle_distance2(d.wanted, m.positions[w[0]], m.positions[w[1]],
+                                                       m.positions[w[2]]));
+      }
+      return best;
+    };
+    const double missed_before2 = lattice && !mesh_point ? missed2() : 0;
     const double before2 = deviation2();
     const double allowed2 = mesh_point ? before2 * 0.999 : std::max(bound2, before2);
     for (double share : kShares) {
@@ -369,6 +385,7 @@ bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_f
         const Vec3 n = face_normal(m, m.triangles[faces[k]]);
         ok = dot(n, normals[k]) > 1e-3 * norm(n) * norm(normals[k]);
       }
+      if (ok && lattice && !mesh_point) ok = missed2() < 0.81 * missed_before2;
       if (ok && deviation2() <= allowed2) {
         for (uint32_t f : faces) touched[f] = 1;
         ++moved[v];
@@ -398,21 +415,8 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
   std::vector<uint8_t> moved;  // rim moves per vertex, over all rounds (at most kMaxMoves: no back and forth)
   while (st.rounds < kMaxRounds && st.inserted < budget) {
     ++st.rounds;
-    // What is measured: the mesh, or (rounded) the mesh as the stream will hold it, every coordinate rounded to the
-    // frame's step (the search measures that too; a knife edge refined to the bound can end above it once rounded).
-    // The moves and insertions change the mesh itself; the next round measures them rounded.
-    Mesh rounded_mesh;
-    if (options.rounded) {
-      rounded_mesh.triangles = m.triangles;
-      rounded_mesh.positions.resize(m.positions.size());
-      for (size_t v = 0; v < m.positions.size(); ++v)
-        for (int a = 0; a < 3; ++a)
-          rounded_mesh.positions[v][static_cast<size_t>(a)] =
-              prm.frame.to_real(prm.frame.quantize(m.positions[v][static_cast<size_t>(a)], a), a);
-    }
-    const Mesh& measured = options.rounded ? rounded_mesh : m;
     // in>pr: the input vertices far from the mesh.
-    const AabbTree tree(measured);
+    const AabbTree tree(m);
     std::vector<AabbTree::Hit> hits(input.positions.size());
     tbb::parallel_for(size_t{0}, input.positions.size(), [&](size_t v) {
       if (used[v]) hits[v] = tree.closest(input.positions[v]);
@@ -468,12 +472,11 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
       tbb::parallel_for(size_t{0}, m.positions.size(), [&](size_t v) {
         const bool lattice = v < prm.vertex_relief.size() && prm.vertex_relief[v] >= 0;
         if ((options.lattice_moves || !lattice) && a_face[v] != UINT32_MAX)
-          vertex_hits[v] = input_tree.closest(measured.positions[v]);
+          vertex_hits[v] = input_tree.closest(m.positions[v]);
       });
       for (uint32_t v = 0; v < vertex_hits.size(); ++v)
         if (vertex_hits[v].found() && vertex_hits[v].distance2 > bound2)
-          far.push_back(
-              {a_face[v], measured.positions[v], vertex_hits[v].point, vertex_hits[v].distance2, kMeshVertex, v});
+          far.push_back({a_face[v], m.positions[v], vertex_hits[v].point, vertex_hits[v].distance2, kMeshVertex, v});
     }
     // pr>in: the mesh's triangles with a point far from the input (thin sheets: on the grid Metro-like dense probes
     // see, grid_divisions; else the centroid and the edges' midpoints).
@@ -481,7 +484,7 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
     std::vector<Vec3> probe_point(m.triangles.size());
     tbb::parallel_for(size_t{0}, m.triangles.size(), [&](size_t f) {
       const Tri& t = m.triangles[f];
-      const Vec3 &a = measured.positions[t[0]], &b = measured.positions[t[1]], &c = measured.positions[t[2]];
+      const Vec3 &a = m.positions[t[0]], &b = m.positions[t[1]], &c = m.positions[t[2]];
       AabbTree::Hit hint;
       const auto visit = [&](const Vec3& x) {
         if (options.dense_probes) {

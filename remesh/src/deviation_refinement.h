@@ -32,15 +32,16 @@ struct DeviationRefinementOptions {
   // replace; and where no split of the closest face reaches a missed point, split a face next to it that faces it.
   // false: only the closest face's splits (as the first local refinement did; bench/README.md "Worst-case error").
   bool thin_sheets = true;
-  // The notch steps (h22thin2; each needs thin_sheets). All four false: the thin-sheet refinement of h22thin, query
+  // The notch steps (h22thin2 and h22thin3; each needs thin_sheets). All of them false: the thin-sheet refinement of h22thin, query
   // for query (each closest-point query alone: a query started from a hint may answer with another of two faces as
   // close, and that face is the one split), which --max-error keeps (bench/README.md "Worst-case error", h22thin3).
   bool lattice_moves = true;  // a lattice vertex that strays moves along its relief's axis (its height)
   bool dense_probes = true;   // mesh triangles probed on the grid_divisions grid (false: centroid, edge midpoints)
   bool normal_reach = true;   // a straying point's new vertex may go along the normal, into the notch
   bool stray_check = true;    // a new vertex's triangles must not stray more than the bound or those they replace
-  // Deviations measured on the mesh rounded to prm.frame (what the stream holds), not on the mesh as remeshed.
-  bool rounded = false;
+  // A lattice vertex of a face that misses an input point moves along its axis towards it before a vertex is
+  // inserted there (needs lattice_moves; h22thin3: fewer new vertices, bench/README.md "Worst-case error").
+  bool lattice_reach = true;
 };
 
 struct DeviationRefinementStats {

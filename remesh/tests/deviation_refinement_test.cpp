@@ -28,8 +28,6 @@ TEST(DeviationRefinement, LatticeVertexOffTheInputMovesAlongItsAxis) {
   prm.lattice_i[pole] = 3;
   prm.lattice_j[pole] = -2;
   prm.relief_axis = {4};  // +z
-  prm.frame.origin = {-100, -100, -100};  // a frame as fine as 1/20 of the bound (the refinement measures rounded)
-  prm.frame.step = 0.05;
   // Off the input sideways and outwards: along its axis it can come back to the sphere, not to where it was.
   const Vec3 off = prm.mesh.positions[pole] + Vec3{2.0, 0.0, 4.0};
   prm.mesh.positions[pole] = off;
@@ -64,6 +62,55 @@ TEST(DeviationRefinement, LatticeVertexOffTheInputMovesAlongItsAxis) {
   o.thin_sheets = false;
   refine_deviations(prm, input, tree, o);
   EXPECT_EQ(prm.mesh.positions[pole][2], off[2]);
+}
+
+// lattice_reach (h22thin3): an input spike (its tip pulled out 12 along +z) over a coarser mesh whose pole is a
+// lattice vertex of a +z relief. The pole itself and its faces stay within the bound (5.5) of the spike's flanks, but
+// the tip is missed by 12: with lattice_reach the pole moves up its axis towards the tip, with no vertex inserted;
+// without it, the tip is inserted as a new vertex and the pole stays.
+TEST(DeviationRefinement, LatticeVertexReachesAMissedTipAlongItsAxis) {
+  Mesh input = test::icosphere(3, 40.0);
+  uint32_t tip = 0;
+  for (uint32_t v = 1; v < input.positions.size(); ++v)
+    if (input.positions[v][2] > input.positions[tip][2]) tip = v;
+  input.positions[tip] = input.positions[tip] + Vec3{0.0, 0.0, 12.0};
+  const AabbTree tree(input);
+  const auto prm_of_sphere = [] {
+    PrmMesh prm;
+    prm.mesh = test::icosphere(2, 40.0);
+    prm.vertex_relief.assign(prm.mesh.positions.size(), 0);
+    prm.lattice_i.assign(prm.mesh.positions.size(), 0);
+    prm.lattice_j.assign(prm.mesh.positions.size(), 0);
+    prm.relief_axis = {4};  // +z
+    return prm;
+  };
+  PrmMesh prm = prm_of_sphere();
+  uint32_t pole = 0;
+  for (uint32_t v = 1; v < prm.mesh.positions.size(); ++v)
+    if (prm.mesh.positions[v][2] > prm.mesh.positions[pole][2]) pole = v;
+  const Vec3 was = prm.mesh.positions[pole];
+  const size_t vertices = prm.mesh.positions.size();
+  ASSERT_LT(tree.closest(was).distance2, 5.5 * 5.5);  // the pole is within the bound: only the tip is missed
+  DeviationRefinementOptions o;
+  o.max_deviation = 5.5;
+  const DeviationRefinementStats st = refine_deviations(prm, input, tree, o);
+  const Vec3 now = prm.mesh.positions[pole];
+  std::printf("lattice_reach: pole from z %.3f to %.3f (tip at %.3f); %zu moved, %zu inserted\n", was[2], now[2],
+              input.positions[tip][2], st.moved, st.inserted);
+  EXPECT_EQ(now[0], was[0]);
+  EXPECT_EQ(now[1], was[1]);
+  EXPECT_GT(now[2], was[2] + 1.0);
+  EXPECT_GE(st.moved, 1u);
+  EXPECT_EQ(st.inserted, 0u);
+  EXPECT_EQ(prm.mesh.positions.size(), vertices);
+  EXPECT_EQ(prm.vertex_relief[pole], 0);
+  PrmMesh no_reach = prm_of_sphere();
+  o.lattice_reach = false;
+  const DeviationRefinementStats sn = refine_deviations(no_reach, input, tree, o);
+  std::printf("without: pole at z %.3f; %zu moved, %zu inserted\n", no_reach.mesh.positions[pole][2], sn.moved,
+              sn.inserted);
+  EXPECT_EQ(no_reach.mesh.positions[pole][2], was[2]);
+  EXPECT_GE(sn.inserted, 1u);
 }
 
 }  // namespace
