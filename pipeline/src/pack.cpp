@@ -127,6 +127,9 @@ Remeshed remesh_at(const SearchContext& ctx, const PackOptions& options, int bit
   ro.refine_error = options.max_error > 0      ? kRefineShare * options.max_error
                     : options.refine_deviations ? kLocalRefineShare * kDefaultMaxErrorPerTarget * options.target_error
                                                 : 0;
+  // The notch steps (DeviationRefinementOptions::lattice_moves .. stray_check) only for --local-refinement: with
+  // --max-error the search keeps the first thin-sheet refinement (bench/README.md "Worst-case error", h22thin3).
+  ro.refine_notches = !(options.max_error > 0);
   // The search measures what the decoder will output: the candidate quantized to the stream's frame (its lattice
   // vertices are exact already; the heights and the other vertices round to the nearest step), or, when the
   // encoder may choose the heights, the candidate encoded and decoded.

@@ -5,8 +5,11 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <vector>
 
+#include "prm/point_triangle_distance.h"
+#include "prm/remesh/lattice.h"
 #include "prm/vec3.h"
 
 namespace prm::remesh {
@@ -25,8 +28,45 @@ constexpr double kFaceProbeShare = 0.5;
 constexpr double kMaxFaceGrid = 8;
 // A point of a triangle this close to an edge (smallest barycentric coordinate) splits the edge, not the triangle.
 constexpr double kEdgeBarycentric = 0.02;
-// The points of a mesh triangle measured against the input (pr>in): its centroid and its edges' midpoints.
+// The points of a mesh triangle the first refinement measured against the input (thin_sheets false): its centroid
+// and its edges' midpoints.
 constexpr double kProbes[4][3] = {{1.0 / 3, 1.0 / 3, 1.0 / 3}, {0.5, 0.5, 0}, {0, 0.5, 0.5}, {0.5, 0, 0.5}};
+// Steps of the walk along a mesh triangle's normal into a notch it bridges (normal_reach).
+constexpr int kReachSteps = 4;
+
+// Divisions per side of the barycentric grid a triangle is probed on: about as fine as the bound (a thin tip or a
+// notch strays most between the vertices, where Metro's samples find it), at least 2, at most kMaxFaceGrid.
+int grid_divisions(const Vec3& a, const Vec3& b, const Vec3& c, double bound) {
+  const double longest = std::sqrt(std::max({norm2(b - a), norm2(c - b), norm2(a - c)}));
+  return static_cast<int>(std::clamp(std::ceil(longest / bound), 2.0, kMaxFaceGrid));
+}
+
+// Calls visit(x) for the points of triangle (a, b, c) on its barycentric grid with n divisions a side, its vertices
+// left out (they are measured on their own).
+template <class Visit>
+void for_each_grid_point(const Vec3& a, const Vec3& b, const Vec3& c, int n, Visit&& visit) {
+  for (int p = 0; p <= n; ++p)
+    for (int q = 0; p + q <= n; ++q) {
+      const int r = n - p - q;
+      if (p == n || q == n || r == n) continue;
+      visit((1.0 / n) * (static_cast<double>(p) * a + static_cast<double>(q) * b + static_cast<double>(r) * c));
+    }
+}
+
+// Where the line through `at` along the unit normal n meets the input, found by walking along it by the normal part
+// of the offset to the input's closest point (kReachSteps steps): a mesh triangle bridging a notch (between two legs,
+// the fold of a thin sheet) strays from the notch's bottom, and the input's closest point to it lies on a wall of the
+// notch, to the side, where a new vertex would turn a triangle over; the point below it along the normal does not.
+Vec3 normal_reach(const AabbTree& input_tree, const Vec3& at, const Vec3& n) {
+  Vec3 x = at;
+  AabbTree::Hit hint;
+  for (int k = 0; k < kReachSteps; ++k) {
+    input_tree.closest(x, hint);
+    if (!hint.found()) break;
+    x = x + dot(hint.point - x, n) * n;
+  }
+  return x;
+}
 
 Vec3 face_normal(const Mesh& m, const Tri& t) {
   return triangle_normal_area2(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]);
@@ -78,15 +118,62 @@ struct Deviation {
 constexpr uint32_t kMeshPoint = UINT32_MAX, kInputPoint = UINT32_MAX - 1, kMeshVertex = UINT32_MAX - 2;
 bool strays_from_input(const Deviation& d) { return d.input_vertex == kMeshPoint || d.input_vertex == kMeshVertex; }
 
+// Calls visit(x) for the probe points of triangle (a, b, c): dense, its grid_divisions grid at `bound`; else its
+// centroid and its edges' midpoints (kProbes).
+template <class Visit>
+void for_each_probe(const Vec3& a, const Vec3& b, const Vec3& c, bool dense, double bound, Visit&& visit) {
+  if (dense) {
+    for_each_grid_point(a, b, c, grid_divisions(a, b, c, bound), visit);
+  } else {
+    for (const auto& w : kProbes) visit(w[0] * a + w[1] * b + w[2] * c);
+  }
+}
+
+// The largest squared distance to the input of the probe points (for_each_probe) of some triangles.
+double probe_deviation2(const Mesh& m, const std::vector<Tri>& tris, const AabbTree& input_tree, double bound,
+                        bool dense) {
+  double worst = 0;
+  AabbTree::Hit hint;
+  for (const Tri& t : tris) {
+    const Vec3 &a = m.positions[t[0]], &b = m.positions[t[1]], &c = m.positions[t[2]];
+    for_each_probe(a, b, c, dense, bound, [&](const Vec3& x) {
+      input_tree.closest(x, hint);
+      worst = std::max(worst, hint.distance2);
+    });
+  }
+  return worst;
+}
+// The triangles of some faces.
+std::vector<Tri> triangles_of(const Mesh& m, const std::vector<uint32_t>& faces) {
+  std::vector<Tri> tris;
+  for (uint32_t f : faces) tris.push_back(m.triangles[f]);
+  return tris;
+}
+
+// What a new vertex must not do (thin sheets): make its triangles stray from the input (at their probe points) more
+// than the bound and more than the triangles they replace did; a vertex at the input's closest point to the side of
+// a notch, or on a wall of a dent, would. No input tree: not checked (the first refinement).
+struct StrayCheck {
+  const AabbTree* input_tree = nullptr;
+  double bound = 0;
+  bool dense = true;  // DeviationRefinementOptions::dense_probes
+  bool passes(const Mesh& m, const std::vector<Tri>& old_tris, const std::vector<Tri>& new_tris) const {
+    if (input_tree == nullptr) return true;
+    const double allowed2 = std::max(bound * bound, probe_deviation2(m, old_tris, *input_tree, bound, dense));
+    return probe_deviation2(m, new_tris, *input_tree, bound, dense) <= allowed2;
+  }
+};
+
 // Splits face f in three at the new vertex nv, placed at `to` or, where that turns a triangle over, part of the way
-// there from `from` (kShares). False (f unchanged) when every place turns one over.
-bool split_in_three(Mesh& m, std::vector<uint8_t>& touched, uint32_t f, uint32_t nv, const Vec3& from, const Vec3& to) {
+// there from `from` (kShares). False (f unchanged) when every place turns one over or fails the check.
+bool split_in_three(Mesh& m, std::vector<uint8_t>& touched, const StrayCheck& check, uint32_t f, uint32_t nv,
+                    const Vec3& from, const Vec3& to) {
   const Tri t = m.triangles[f];
   const Vec3 old_normal = face_normal(m, t);
   const std::vector<Tri> tris = {{t[0], t[1], nv}, {t[1], t[2], nv}, {t[2], t[0], nv}};
   for (double share : kShares) {
     m.positions[nv] = from + share * (to - from);
-    if (!faces_agree(m, old_normal, tris)) continue;
+    if (!faces_agree(m, old_normal, tris) || !check.passes(m, {t}, tris)) continue;
     m.triangles[f] = tris[0];
     m.triangles.push_back(tris[1]);
     m.triangles.push_back(tris[2]);
@@ -99,20 +186,26 @@ bool split_in_three(Mesh& m, std::vector<uint8_t>& touched, uint32_t f, uint32_t
 
 // Inserts a vertex for d into m (splitting d.face, or one of its edges and the triangle across it). False when every
 // way of doing so turns a triangle over or touches a triangle changed in this round.
+// A straying mesh point (strays_from_input) with `reach`: where the input's closest point would turn a triangle over,
+// the new vertex goes along the normal (normal_reach) instead.
 bool insert(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std::vector<uint8_t>& touched,
-            const Deviation& d) {
+            const AabbTree& input_tree, const StrayCheck& check, bool reach, const Deviation& d) {
   const uint32_t f = d.face;
   const Tri t = m.triangles[f];
   const Vec3 old_normal = face_normal(m, t);
   const std::array<double, 3> bc = barycentric(m, t, d.at);
   const uint32_t nv = static_cast<uint32_t>(m.positions.size());
+  const bool along_normal = reach && strays_from_input(d);
   m.positions.push_back(d.wanted);
   std::array<int, 3> corners = {0, 1, 2};  // the closest edge first: opposite the smallest coordinate
   std::sort(corners.begin(), corners.end(),
             [&](int x, int y) { return bc[static_cast<size_t>(x)] < bc[static_cast<size_t>(y)]; });
   if (bc[static_cast<size_t>(corners[0])] > kEdgeBarycentric) {
     // Inside the triangle: split it in three.
-    if (split_in_three(m, touched, f, nv, d.at, d.wanted)) return true;
+    if (split_in_three(m, touched, check, f, nv, d.at, d.wanted)) return true;
+    if (along_normal &&
+        split_in_three(m, touched, check, f, nv, d.at, normal_reach(input_tree, d.at, normalized(old_normal))))
+      return true;
   }
   // Near an edge (or where the split in three turns a triangle over): split an edge and both its triangles. The new
   // vertex at the wanted point or, where that turns a triangle over (beyond a corner or a sharp crease), part of the
@@ -134,18 +227,25 @@ bool insert(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std
     const double s = std::clamp(dot(d.wanted - pa, pb - pa) / std::max(norm2(pb - pa), 1e-300), 0.1, 0.9);
     const Vec3 on_edge = pa + s * (pb - pa);
     const Vec3 normal_u = face_normal(m, u);
-    for (double share : kShares) {
-      m.positions[nv] = on_edge + share * (d.wanted - on_edge);
-      if (!faces_agree(m, old_normal, mine) || !faces_agree(m, normal_u, theirs)) continue;
-      m.triangles[f] = mine[0];
-      m.triangles.push_back(mine[1]);
-      m.triangles[static_cast<size_t>(g)] = theirs[0];
-      m.triangles.push_back(theirs[1]);
-      touched[f] = 1;
-      touched[static_cast<size_t>(g)] = 1;
-      touched.resize(m.triangles.size(), 1);
-      return true;
-    }
+    // The wanted point, then (a straying point) the input along the pair's normal below the point on the edge.
+    std::vector<Vec3> targets = {d.wanted};
+    if (along_normal)
+      targets.push_back(normal_reach(input_tree, on_edge, normalized(normalized(old_normal) + normalized(normal_u))));
+    for (const Vec3& target : targets)
+      for (double share : kShares) {
+        m.positions[nv] = on_edge + share * (target - on_edge);
+        if (!faces_agree(m, old_normal, mine) || !faces_agree(m, normal_u, theirs) ||
+            !check.passes(m, {t, u}, {mine[0], mine[1], theirs[0], theirs[1]}))
+          continue;
+        m.triangles[f] = mine[0];
+        m.triangles.push_back(mine[1]);
+        m.triangles[static_cast<size_t>(g)] = theirs[0];
+        m.triangles.push_back(theirs[1]);
+        touched[f] = 1;
+        touched[static_cast<size_t>(g)] = 1;
+        touched.resize(m.triangles.size(), 1);
+        return true;
+      }
   }
   m.positions.pop_back();
   return false;
@@ -157,7 +257,7 @@ bool insert(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std
 // point best first, the first whose split in three with the new vertex at the point (or part of the way there from
 // its centroid) turns nothing over is split. False when none is.
 bool insert_on_facing_face(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces,
-                           std::vector<uint8_t>& touched, const Deviation& d) {
+                           std::vector<uint8_t>& touched, const StrayCheck& check, const Deviation& d) {
   std::vector<std::pair<double, uint32_t>> candidates;  // (-cosine, face)
   for (uint32_t v : m.triangles[d.face])
     for (uint32_t h : vertex_faces[v]) {
@@ -175,23 +275,10 @@ bool insert_on_facing_face(Mesh& m, const std::vector<std::vector<uint32_t>>& ve
   for (const auto& [cosine, h] : candidates) {
     const Tri& t = m.triangles[h];
     const Vec3 centroid = (1.0 / 3) * (m.positions[t[0]] + m.positions[t[1]] + m.positions[t[2]]);
-    if (split_in_three(m, touched, h, nv, centroid, d.wanted)) return true;
+    if (split_in_three(m, touched, check, h, nv, centroid, d.wanted)) return true;
   }
   m.positions.pop_back();
   return false;
-}
-
-// The largest squared distance to the input of the probe points (kProbes) of the faces around a vertex.
-double probe_deviation2(const Mesh& m, const std::vector<uint32_t>& faces, const AabbTree& input_tree) {
-  double worst = 0;
-  for (uint32_t f : faces) {
-    const Tri& t = m.triangles[f];
-    for (const auto& w : kProbes) {
-      const Vec3 p = w[0] * m.positions[t[0]] + w[1] * m.positions[t[1]] + w[2] * m.positions[t[2]];
-      worst = std::max(worst, input_tree.closest(p).distance2);
-    }
-  }
-  return worst;
 }
 
 // A triangle that strays from the input at a point near its edge a-b (pr>in: it bridges a notch or the fold of a
@@ -199,7 +286,7 @@ double probe_deviation2(const Mesh& m, const std::vector<uint32_t>& faces, const
 // becomes (c, a, e), (c, e, b) when c-e is not an edge yet, neither new face turns over against the pair, and the
 // new faces' probe points stray less than the old ones'. False when the flip is not made.
 bool flip_straying_edge(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, const AabbTree& input_tree,
-                        std::vector<uint8_t>& touched, const Deviation& d) {
+                        double bound, bool dense, std::vector<uint8_t>& touched, const Deviation& d) {
   const uint32_t f = d.face;
   const Tri t = m.triangles[f];
   const std::array<double, 3> bc = barycentric(m, t, d.at);
@@ -219,11 +306,12 @@ bool flip_straying_edge(Mesh& m, const std::vector<std::vector<uint32_t>>& verte
   }
   const Vec3 pair_normal = face_normal(m, t) + face_normal(m, u);
   const Tri old_f = t, old_g = u;
-  const double before = probe_deviation2(m, {f, static_cast<uint32_t>(g)}, input_tree);
+  const double before =
+      probe_deviation2(m, {m.triangles[f], m.triangles[static_cast<size_t>(g)]}, input_tree, bound, dense);
   m.triangles[f] = {c, a, e};
   m.triangles[static_cast<size_t>(g)] = {c, e, b};
   if (faces_agree(m, pair_normal, {m.triangles[f], m.triangles[static_cast<size_t>(g)]}) &&
-      probe_deviation2(m, {f, static_cast<uint32_t>(g)}, input_tree) < before) {
+      probe_deviation2(m, {m.triangles[f], m.triangles[static_cast<size_t>(g)]}, input_tree, bound, dense) < before) {
     touched[f] = 1;
     touched[static_cast<size_t>(g)] = 1;
     return true;
@@ -237,18 +325,26 @@ bool flip_straying_edge(Mesh& m, const std::vector<std::vector<uint32_t>>& verte
 // vertex lies on the seam that closes the sheet, between irregular vertices. Moving one of them out to the input
 // vertex (or part of the way) follows the tip at no cost in vertices. Tries the face's irregular vertices, nearest
 // the wanted point first; a move is kept when no face around the vertex turns over and the faces' probe points stay
-// within the bound (or within what they strayed before). False when no move is kept.
+// within the bound (or within what they strayed before). For a straying point (pr>in) a lattice vertex may move too,
+// along its relief's axis only (a lattice vertex off a smooth part of the input: CGAL's bunny00), when its faces and
+// itself then stray less; and (lattice_reach) for a missed input point, along its axis towards it, when the point
+// then lies at least 10% nearer its faces and they stay within the bound (a move instead of a new vertex, which
+// costs more bytes). False when no move is kept.
 bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, const PrmMesh& prm,
-                     const AabbTree& input_tree, double bound2, std::vector<uint8_t>& touched,
-                     std::vector<uint8_t>& moved, const Deviation& d) {
+                     const AabbTree& input_tree, const DeviationRefinementOptions& options, double bound2,
+                     std::vector<uint8_t>& touched, std::vector<uint8_t>& moved, const Deviation& d) {
   const Tri t = m.triangles[d.face];
   std::array<uint32_t, 3> order = {t[0], t[1], t[2]};
   std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
     return norm2(m.positions[a] - d.wanted) < norm2(m.positions[b] - d.wanted);
   });
   if (d.input_vertex == kMeshVertex) order = {d.vertex, d.vertex, d.vertex};
+  const bool mesh_point = strays_from_input(d);
   for (uint32_t v : order) {
-    if (v < prm.vertex_relief.size() && prm.vertex_relief[v] >= 0) continue;  // a lattice vertex stays
+    // A lattice vertex keeps its lattice place: it moves only along its relief's axis (its height, as the
+    // least-squares heights move it), for a straying point or (lattice_reach) towards a missed input point.
+    const bool lattice = v < prm.vertex_relief.size() && prm.vertex_relief[v] >= 0;
+    if (lattice && (!options.lattice_moves || (!mesh_point && !options.lattice_reach))) continue;
     if (v >= moved.size() || moved[v] >= kMaxMoves) continue;  // inserted in this round, or moved enough
     const std::vector<uint32_t>& faces = vertex_faces[v];
     if (std::any_of(faces.begin(), faces.end(), [&](uint32_t f) { return touched[f] != 0; })) continue;
@@ -257,9 +353,30 @@ bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_f
     const Vec3 from = m.positions[v];
     // A missed input vertex: the vertex goes to it. A straying mesh point: the vertex moves as the point should, and
     // its faces must stray less than before.
-    const bool mesh_point = strays_from_input(d);
-    const Vec3 to = mesh_point ? from + (d.wanted - d.at) : d.wanted;
-    const double before2 = probe_deviation2(m, faces, input_tree);
+    Vec3 to = mesh_point ? from + (d.wanted - d.at) : d.wanted;
+    if (lattice) {
+      const Vec3 axis = axis_vector(prm.relief_axis[static_cast<size_t>(prm.vertex_relief[v])]);
+      to = d.input_vertex == kMeshVertex ? normal_reach(input_tree, from, axis) : from + dot(to - from, axis) * axis;
+    }
+    // The faces' probe points and (lattice_moves) the vertex itself.
+    const auto deviation2 = [&] {
+      const double faces2 =
+          probe_deviation2(m, triangles_of(m, faces), input_tree, options.max_deviation, options.dense_probes);
+      return options.lattice_moves ? std::max(faces2, input_tree.closest(m.positions[v]).distance2) : faces2;
+    };
+    // A missed input point a lattice vertex moves for: its distance to the vertex's faces, which the move must cut
+    // by at least 10% (the axis may pass it by).
+    const auto missed2 = [&] {
+      double best = std::numeric_limits<double>::infinity();
+      for (uint32_t f : faces) {
+        const Tri& w = m.triangles[f];
+        best = std::min(best, point_triangle_distance2(d.wanted, m.positions[w[0]], m.positions[w[1]],
+                                                       m.positions[w[2]]));
+      }
+      return best;
+    };
+    const double missed_before2 = lattice && !mesh_point ? missed2() : 0;
+    const double before2 = deviation2();
     const double allowed2 = mesh_point ? before2 * 0.999 : std::max(bound2, before2);
     for (double share : kShares) {
       m.positions[v] = from + share * (to - from);
@@ -268,7 +385,8 @@ bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_f
         const Vec3 n = face_normal(m, m.triangles[faces[k]]);
         ok = dot(n, normals[k]) > 1e-3 * norm(n) * norm(normals[k]);
       }
-      if (ok && probe_deviation2(m, faces, input_tree) <= allowed2) {
+      if (ok && lattice && !mesh_point) ok = missed2() < 0.81 * missed_before2;
+      if (ok && deviation2() <= allowed2) {
         for (uint32_t f : faces) touched[f] = 1;
         ++moved[v];
         return true;
@@ -292,6 +410,8 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
     for (uint32_t v : t) used[v] = 1;
   const double bound2 = options.max_deviation * options.max_deviation;
   std::vector<std::vector<uint32_t>> vertex_faces;
+  StrayCheck check;
+  if (options.thin_sheets && options.stray_check) check = {&input_tree, options.max_deviation, options.dense_probes};
   std::vector<uint8_t> moved;  // rim moves per vertex, over all rounds (at most kMaxMoves: no back and forth)
   while (st.rounds < kMaxRounds && st.inserted < budget) {
     ++st.rounds;
@@ -323,26 +443,27 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
       tbb::parallel_for(size_t{0}, near_far.size(), [&](size_t i) {
         const Tri& t = input.triangles[near_far[i]];
         const Vec3 &a = input.positions[t[0]], &b = input.positions[t[1]], &c = input.positions[t[2]];
-        const double longest = std::sqrt(std::max({norm2(b - a), norm2(c - b), norm2(a - c)}));
-        const int n = static_cast<int>(std::clamp(std::ceil(longest / options.max_deviation), 2.0, kMaxFaceGrid));
-        for (int p = 0; p <= n; ++p)
-          for (int q = 0; p + q <= n; ++q) {
-            const int r = n - p - q;
-            if ((p == n || q == n || r == n)) continue;  // the vertices are measured already
-            const Vec3 x = (1.0 / n) * (static_cast<double>(p) * a + static_cast<double>(q) * b +
-                                        static_cast<double>(r) * c);
-            const AabbTree::Hit h = tree.closest(x);
-            if (h.found() && (!face_hit[i].found() || h.distance2 > face_hit[i].distance2)) {
-              face_hit[i] = h;
-              face_point[i] = x;
-            }
+        AabbTree::Hit hint;
+        for_each_grid_point(a, b, c, grid_divisions(a, b, c, options.max_deviation), [&](const Vec3& x) {
+          // Without the notch steps, each query alone, as the first refinement did (a hint may pick another face
+          // where two are as close, e.g. at an edge, and that face is the one split).
+          if (options.dense_probes) {
+            tree.closest(x, hint);
+          } else {
+            hint = tree.closest(x);
           }
+          if (hint.found() && (!face_hit[i].found() || hint.distance2 > face_hit[i].distance2)) {
+            face_hit[i] = hint;
+            face_point[i] = x;
+          }
+        });
       });
       for (size_t i = 0; i < near_far.size(); ++i)
         if (face_hit[i].found() && face_hit[i].distance2 > bound2)
           far.push_back({face_hit[i].face, face_hit[i].point, face_point[i], face_hit[i].distance2, kInputPoint});
     }
-    // pr>in at the mesh's vertices (an irregular vertex left out on a tip is moved back towards the input).
+    // pr>in at the mesh's vertices (an irregular vertex left out on a tip is moved back towards the input, a lattice
+    // vertex off the input along its axis).
     if (options.thin_sheets) {
       std::vector<uint32_t> a_face(m.positions.size(), UINT32_MAX);
       for (uint32_t f = 0; f < m.triangles.size(); ++f)
@@ -350,34 +471,37 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
       std::vector<AabbTree::Hit> vertex_hits(m.positions.size());
       tbb::parallel_for(size_t{0}, m.positions.size(), [&](size_t v) {
         const bool lattice = v < prm.vertex_relief.size() && prm.vertex_relief[v] >= 0;
-        if (!lattice && a_face[v] != UINT32_MAX) vertex_hits[v] = input_tree.closest(m.positions[v]);
+        if ((options.lattice_moves || !lattice) && a_face[v] != UINT32_MAX)
+          vertex_hits[v] = input_tree.closest(m.positions[v]);
       });
       for (uint32_t v = 0; v < vertex_hits.size(); ++v)
         if (vertex_hits[v].found() && vertex_hits[v].distance2 > bound2)
           far.push_back({a_face[v], m.positions[v], vertex_hits[v].point, vertex_hits[v].distance2, kMeshVertex, v});
     }
-    // pr>in: the mesh's triangles whose centroid or edge midpoints are far from the input.
-    std::vector<std::array<AabbTree::Hit, 4>> probes(m.triangles.size());
+    // pr>in: the mesh's triangles with a point far from the input (thin sheets: on the grid Metro-like dense probes
+    // see, grid_divisions; else the centroid and the edges' midpoints).
+    std::vector<AabbTree::Hit> probe_hit(m.triangles.size());
+    std::vector<Vec3> probe_point(m.triangles.size());
     tbb::parallel_for(size_t{0}, m.triangles.size(), [&](size_t f) {
       const Tri& t = m.triangles[f];
-      for (size_t k = 0; k < 4; ++k) {
-        const Vec3 p = kProbes[k][0] * m.positions[t[0]] + kProbes[k][1] * m.positions[t[1]] +
-                       kProbes[k][2] * m.positions[t[2]];
-        probes[f][k] = input_tree.closest(p);
-      }
+      const Vec3 &a = m.positions[t[0]], &b = m.positions[t[1]], &c = m.positions[t[2]];
+      AabbTree::Hit hint;
+      const auto visit = [&](const Vec3& x) {
+        if (options.dense_probes) {
+          input_tree.closest(x, hint);
+        } else {
+          hint = input_tree.closest(x);
+        }
+        if (hint.found() && (!probe_hit[f].found() || hint.distance2 > probe_hit[f].distance2)) {
+          probe_hit[f] = hint;
+          probe_point[f] = x;
+        }
+      };
+      for_each_probe(a, b, c, options.thin_sheets && options.dense_probes, options.max_deviation, visit);
     });
-    for (uint32_t f = 0; f < m.triangles.size(); ++f) {
-      const Tri& t = m.triangles[f];
-      size_t worst = 4;
-      for (size_t k = 0; k < 4; ++k)
-        if (probes[f][k].found() && probes[f][k].distance2 > bound2 &&
-            (worst == 4 || probes[f][k].distance2 > probes[f][worst].distance2))
-          worst = k;
-      if (worst == 4) continue;
-      const Vec3 p = kProbes[worst][0] * m.positions[t[0]] + kProbes[worst][1] * m.positions[t[1]] +
-                     kProbes[worst][2] * m.positions[t[2]];
-      far.push_back({f, p, probes[f][worst].point, probes[f][worst].distance2, kMeshPoint});
-    }
+    for (uint32_t f = 0; f < m.triangles.size(); ++f)
+      if (probe_hit[f].found() && probe_hit[f].distance2 > bound2)
+        far.push_back({f, probe_point[f], probe_hit[f].point, probe_hit[f].distance2, kMeshPoint});
     if (far.empty()) break;
     // Farthest first; one insertion per triangle neighbourhood in a round (the rest is measured again next round).
     std::sort(far.begin(), far.end(), [](const Deviation& a, const Deviation& b) {
@@ -396,20 +520,20 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
       if (st.inserted >= budget) break;
       if (touched[d.face]) continue;
       if (options.thin_sheets &&
-          move_rim_vertex(m, vertex_faces, prm, input_tree, bound2, touched, moved, d)) {
+          move_rim_vertex(m, vertex_faces, prm, input_tree, options, bound2, touched, moved, d)) {
         ++st.moved;
         ++inserted_this_round;
         continue;
       }
       if (d.input_vertex == kMeshVertex) continue;  // moved or left
       if (options.thin_sheets && d.input_vertex == kMeshPoint &&
-          flip_straying_edge(m, vertex_faces, input_tree, touched, d)) {
+          flip_straying_edge(m, vertex_faces, input_tree, options.max_deviation, options.dense_probes, touched, d)) {
         ++st.flipped;
         ++inserted_this_round;
         continue;
       }
-      if (insert(m, vertex_faces, touched, d) ||
-          (options.thin_sheets && !strays_from_input(d) && insert_on_facing_face(m, vertex_faces, touched, d))) {
+      if (insert(m, vertex_faces, touched, input_tree, check, options.thin_sheets && options.normal_reach, d) ||
+          (options.thin_sheets && !strays_from_input(d) && insert_on_facing_face(m, vertex_faces, touched, check, d))) {
         ++st.inserted;
         ++inserted_this_round;
       } else {

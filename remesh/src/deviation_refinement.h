@@ -5,10 +5,10 @@
 // at the input vertices the mesh misses (in>pr), and at the input's closest point to a triangle's centroid or edge
 // midpoint that strays from it (pr>in: a triangle bridging a notch, e.g. between an ear and the head). Each splits
 // the closest triangle, or its closest edge, farthest deviation first, round after round until none is left or the
-// budget is spent. Lattice vertices and the regular triangles away from the inserted vertices are untouched.
+// budget is spent. The regular triangles away from the inserted vertices keep their connectivity.
 // Thin sheets (DeviationRefinementOptions::thin_sheets) need more than a split of the closest face: a tip beyond a
 // lattice corner, an input triangle longer than the bound whose vertices are near the mesh, a vertex left out on a
-// tip, two triangles bridging a fold; see there.
+// tip, two triangles bridging a fold, a lattice vertex off a smooth part of the input (CGAL's bunny00); see there.
 #pragma once
 
 #include <cstddef>
@@ -23,18 +23,32 @@ struct DeviationRefinementOptions {
   double max_deviation = 0;  // model units: input vertices farther than this from the mesh are inserted (<= 0: none)
   double max_insert_share = 0.03;   // at most this share of the mesh's vertices is inserted
   // Thin sheets (issue 22, the cause of the worst case): before inserting a vertex, move an irregular vertex out to a
-  // missed input point (a cut-off tip's rim) or back to the input (a mesh vertex that strays), or flip an edge whose
-  // triangles bridge a notch; measure the input's triangles between their vertices near a missed vertex; and where no
-  // split of the closest face reaches a missed point, split a face next to it that faces it. false: only the closest
-  // face's splits (as the first local refinement did; bench/README.md "Worst-case error").
+  // missed input point (a cut-off tip's rim) or back to the input (a mesh vertex that strays), move a lattice vertex
+  // that strays along its relief's axis (its height: it keeps its lattice place), or flip an edge whose triangles
+  // bridge a notch; measure the input's triangles near a missed vertex and every mesh triangle on a barycentric grid
+  // about as fine as the bound (as Metro's samples find a place that strays between vertices); where the closest
+  // point to a straying mesh point would turn a triangle over, put the new vertex along the normal (a notch's
+  // bottom); keep a new vertex only when its triangles stray no further than the bound or the triangles they
+  // replace; and where no split of the closest face reaches a missed point, split a face next to it that faces it.
+  // false: only the closest face's splits (as the first local refinement did; bench/README.md "Worst-case error").
   bool thin_sheets = true;
+  // The notch steps (h22thin2 and h22thin3; each needs thin_sheets). All of them false: the thin-sheet refinement of h22thin, query
+  // for query (each closest-point query alone: a query started from a hint may answer with another of two faces as
+  // close, and that face is the one split), which --max-error keeps (bench/README.md "Worst-case error", h22thin3).
+  bool lattice_moves = true;  // a lattice vertex that strays moves along its relief's axis (its height)
+  bool dense_probes = true;   // mesh triangles probed on the grid_divisions grid (false: centroid, edge midpoints)
+  bool normal_reach = true;   // a straying point's new vertex may go along the normal, into the notch
+  bool stray_check = true;    // a new vertex's triangles must not stray more than the bound or those they replace
+  // A lattice vertex of a face that misses an input point moves along its axis towards it before a vertex is
+  // inserted there (needs lattice_moves; h22thin3: fewer new vertices, bench/README.md "Worst-case error").
+  bool lattice_reach = true;
 };
 
 struct DeviationRefinementStats {
   size_t inserted = 0;  // vertices inserted
   size_t refused = 0;   // deviations left: every split would turn a triangle over
   size_t flipped = 0;   // edges flipped for a straying mesh point
-  size_t moved = 0;     // irregular vertices moved out to a missed input vertex (rim moves)
+  size_t moved = 0;     // vertex moves: irregular ones (a rim), lattice ones along their axis (their height)
   size_t rounds = 0;
 };
 

@@ -87,6 +87,7 @@ RemeshResult remesh(const Mesh& input, const RemeshOptions& options, const Error
   const double diagonal = bbox_diagonal(input);
   ro.max_deviation = (options.refine_error > 0 ? options.refine_error : options.max_error) * diagonal;
   ro.refine_thin_sheets = options.refine_thin_sheets;
+  ro.refine_notches = options.refine_notches;
   const int64_t coarsest = int64_t{1} << options.bits;  // a grid wider than the bounding box
   auto grid_of = [&](double size) {
     const double steps = size / ro.frame.step;

@@ -106,9 +106,9 @@ void add_pack_command(CLI::App& root) {
   cmd->add_flag("--local-refinement", opt->refine,
                 "Without --max-error: insert or move vertices where the remeshed surface strays more than " +
                     std::to_string(pipeline::kLocalRefineShare * pipeline::kDefaultMaxErrorPerTarget).substr(0, 3) +
-                    " x --target-error from the input (thin sheets the grid cuts off; bench/README.md 'Worst-case "
-                    "error': the horse's max from 25x to 9.9x the target for +4.2% bytes; +5.7% for nothing on "
-                    "CGAL's bunny00)");
+                    " x --target-error from the input (thin sheets the grid cuts off, lattice vertices off the input; "
+                    "bench/README.md 'Worst-case error': the horse's max from 25x to 9.1x the target for +6.6% bytes, "
+                    "venus from 16x to 8.1x for +4.4%, CGAL's armadillo to 7.2x for +0.2%)");
   cmd->add_flag("--adaptive", opt->adaptive,
                 "A grid size per relief (format 1.5, spec §8.4.2): each relief's grid chosen by equal slope (the same "
                 "marginal bytes per unit of squared error in every relief) from its error measured on two uniform "

@@ -28,6 +28,7 @@ struct RemeshOptions {
   // it as irregular vertices (ResampleOptions::max_deviation). 0: max_error (0 too: none).
   double refine_error = 0;
   bool refine_thin_sheets = true;  // ResampleOptions::refine_thin_sheets
+  bool refine_notches = true;      // ResampleOptions::refine_notches
   double initial_grid_size = 0;  // with target_error: where the search starts (model units; 0: 1.5 mean edges)
   // A grid size per relief (spec §8.4.2, format 1.5): relief r (an id of the layout) is resampled with the grid
   // round(g x relief_grid_scale[r]) quantization steps (at least 2, at most 2^bits), g being the grid of the options

@@ -44,6 +44,7 @@ struct ResampleOptions {
   // are inserted as irregular vertices. <= 0: none.
   double max_deviation = 0;
   bool refine_thin_sheets = true;  // the refinement's thin-sheet steps (DeviationRefinementOptions::thin_sheets)
+  bool refine_notches = true;  // its notch steps (DeviationRefinementOptions::lattice_moves .. stray_check)
   // The AABB tree of the layout's input mesh, if the caller has one (null: built for each call; at 2M input
   // vertices that is 4.3M triangles, 470 MB and seconds a grid round).
   const AabbTree* input_tree = nullptr;

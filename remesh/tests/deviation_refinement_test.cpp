@@ -1,0 +1,117 @@
+// The local refinement's step for a lattice vertex off the input (deviation_refinement.h, issue 22): bunny00's worst
+// place was a lattice vertex 2e-3 of the diagonal off a smooth part of the input, which the refinement did not move
+// (lattice vertices stayed) and whose edges no split could bring down. It moves along its relief's axis only (its
+// height), keeping its lattice place and its labels, with no vertex inserted.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "../src/deviation_refinement.h"
+#include "prm/aabb_tree.h"
+#include "prm/vec3.h"
+#include "test_meshes.h"
+
+namespace prm::remesh {
+namespace {
+
+TEST(DeviationRefinement, LatticeVertexOffTheInputMovesAlongItsAxis) {
+  const Mesh input = test::icosphere(2, 40.0);
+  const AabbTree tree(input);
+  PrmMesh prm;
+  prm.mesh = input;
+  uint32_t pole = 0;  // the vertex of largest z: the relief's axis +z is its normal
+  for (uint32_t v = 1; v < prm.mesh.positions.size(); ++v)
+    if (prm.mesh.positions[v][2] > prm.mesh.positions[pole][2]) pole = v;
+  prm.vertex_relief.assign(prm.mesh.positions.size(), 0);
+  prm.lattice_i.assign(prm.mesh.positions.size(), 0);
+  prm.lattice_j.assign(prm.mesh.positions.size(), 0);
+  prm.lattice_i[pole] = 3;
+  prm.lattice_j[pole] = -2;
+  prm.relief_axis = {4};  // +z
+  // Off the input sideways and outwards: along its axis it can come back to the sphere, not to where it was.
+  const Vec3 off = prm.mesh.positions[pole] + Vec3{2.0, 0.0, 4.0};
+  prm.mesh.positions[pole] = off;
+  const size_t vertices = prm.mesh.positions.size();
+  DeviationRefinementOptions o;
+  o.max_deviation = 1.0;
+  const DeviationRefinementStats st = refine_deviations(prm, input, tree, o);
+  const Vec3 now = prm.mesh.positions[pole];
+  std::printf("pole moved from (%.3f %.3f %.3f) to (%.3f %.3f %.3f), %.3f from the input; %zu moved, %zu inserted\n",
+              off[0], off[1], off[2], now[0], now[1], now[2], std::sqrt(tree.closest(now).distance2), st.moved,
+              st.inserted);
+  EXPECT_EQ(now[0], off[0]);  // its lattice place
+  EXPECT_EQ(now[1], off[1]);
+  EXPECT_LT(tree.closest(now).distance2, o.max_deviation * o.max_deviation);
+  EXPECT_GE(st.moved, 1u);
+  EXPECT_EQ(st.inserted, 0u);
+  EXPECT_EQ(prm.mesh.positions.size(), vertices);
+  EXPECT_EQ(prm.vertex_relief[pole], 0);
+  EXPECT_EQ(prm.lattice_i[pole], 3);
+  EXPECT_EQ(prm.lattice_j[pole], -2);
+  // Without the lattice moves (what --max-error runs: the notch steps off) it stays where it is, and the pole's
+  // faces (the mesh points that stray) are split instead.
+  prm.mesh.positions[pole] = off;
+  DeviationRefinementOptions no_moves = o;
+  no_moves.lattice_moves = false;
+  const DeviationRefinementStats sn = refine_deviations(prm, input, tree, no_moves);
+  EXPECT_EQ(prm.mesh.positions[pole][2], off[2]);
+  EXPECT_EQ(sn.moved, 0u);
+  // Without the thin-sheet steps (the first refinement) a lattice vertex stays where it is.
+  prm.mesh = input;
+  prm.mesh.positions[pole] = off;
+  o.thin_sheets = false;
+  refine_deviations(prm, input, tree, o);
+  EXPECT_EQ(prm.mesh.positions[pole][2], off[2]);
+}
+
+// lattice_reach (h22thin3): an input spike (its tip pulled out 12 along +z) over a coarser mesh whose pole is a
+// lattice vertex of a +z relief. The pole itself and its faces stay within the bound (5.5) of the spike's flanks, but
+// the tip is missed by 12: with lattice_reach the pole moves up its axis towards the tip, with no vertex inserted;
+// without it, the tip is inserted as a new vertex and the pole stays.
+TEST(DeviationRefinement, LatticeVertexReachesAMissedTipAlongItsAxis) {
+  Mesh input = test::icosphere(3, 40.0);
+  uint32_t tip = 0;
+  for (uint32_t v = 1; v < input.positions.size(); ++v)
+    if (input.positions[v][2] > input.positions[tip][2]) tip = v;
+  input.positions[tip] = input.positions[tip] + Vec3{0.0, 0.0, 12.0};
+  const AabbTree tree(input);
+  const auto prm_of_sphere = [] {
+    PrmMesh prm;
+    prm.mesh = test::icosphere(2, 40.0);
+    prm.vertex_relief.assign(prm.mesh.positions.size(), 0);
+    prm.lattice_i.assign(prm.mesh.positions.size(), 0);
+    prm.lattice_j.assign(prm.mesh.positions.size(), 0);
+    prm.relief_axis = {4};  // +z
+    return prm;
+  };
+  PrmMesh prm = prm_of_sphere();
+  uint32_t pole = 0;
+  for (uint32_t v = 1; v < prm.mesh.positions.size(); ++v)
+    if (prm.mesh.positions[v][2] > prm.mesh.positions[pole][2]) pole = v;
+  const Vec3 was = prm.mesh.positions[pole];
+  const size_t vertices = prm.mesh.positions.size();
+  ASSERT_LT(tree.closest(was).distance2, 5.5 * 5.5);  // the pole is within the bound: only the tip is missed
+  DeviationRefinementOptions o;
+  o.max_deviation = 5.5;
+  const DeviationRefinementStats st = refine_deviations(prm, input, tree, o);
+  const Vec3 now = prm.mesh.positions[pole];
+  std::printf("lattice_reach: pole from z %.3f to %.3f (tip at %.3f); %zu moved, %zu inserted\n", was[2], now[2],
+              input.positions[tip][2], st.moved, st.inserted);
+  EXPECT_EQ(now[0], was[0]);
+  EXPECT_EQ(now[1], was[1]);
+  EXPECT_GT(now[2], was[2] + 1.0);
+  EXPECT_GE(st.moved, 1u);
+  EXPECT_EQ(st.inserted, 0u);
+  EXPECT_EQ(prm.mesh.positions.size(), vertices);
+  EXPECT_EQ(prm.vertex_relief[pole], 0);
+  PrmMesh no_reach = prm_of_sphere();
+  o.lattice_reach = false;
+  const DeviationRefinementStats sn = refine_deviations(no_reach, input, tree, o);
+  std::printf("without: pole at z %.3f; %zu moved, %zu inserted\n", no_reach.mesh.positions[pole][2], sn.moved,
+              sn.inserted);
+  EXPECT_EQ(no_reach.mesh.positions[pole][2], was[2]);
+  EXPECT_GE(sn.inserted, 1u);
+}
+
+}  // namespace
+}  // namespace prm::remesh
