@@ -111,7 +111,7 @@ void fit_lp_table(const std::vector<LpSample>& samples, LpTable& table, std::arr
     for (uint32_t m = 0; m < per_mask.size(); ++m)
       if (per_mask[m] != 0) masks.push_back({m, per_mask[m]});
   }
-  // The first enabled set inside `mask`, as LpTable::build_selection's table gives it (kLpNoSet if none).
+  // The first enabled set inside `mask`, as LpTable::select gives it (kLpNoSet if none).
   const auto first_enabled = [&table](uint32_t mask) {
     for (int s = 0; s < kLpSets; ++s)
       if (table.enabled[s] && (kLpSetMask[s] & ~mask) == 0) return s;

@@ -18,7 +18,7 @@ struct LpSample {
   int64_t h = 0;
 };
 
-// Fills table.enabled / table.weight (and table.first_set) and `fitted` (the sets whose weights the stream
+// Fills table.enabled / table.weight (and starts table.select) and `fitted` (the sets whose weights the stream
 // carries): a set without default weights is enabled only when at least kLpMinSamplesPerTap samples per tap select
 // it; an enabled set with that many samples gets weights fitted by least absolute deviations, the others keep
 // their defaults; sets no sample selects are disabled.

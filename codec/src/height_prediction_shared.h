@@ -94,49 +94,56 @@ struct LpModels {
   bool sign_context = false;                  // the stream's Flags bit 3 (format 1.4)
 };
 
-// §9.7.2 The predictor table of a stream: which sets are enabled and their weights; first_set[mask] is the first
-// enabled set all of whose offsets are in `mask` (kLpNoSet if none).
+// §9.7.2 The predictor table of a stream: which sets are enabled and their weights; select(mask) is the first
+// enabled set all of whose offsets are in `mask` (kLpNoSet if none), and group[s] the context group of set s.
 struct LpTable {
   std::array<bool, kLpSets> enabled{};
   std::array<std::array<int32_t, kLpMaxTaps>, kLpSets> weight{};
   std::array<std::array<int, kLpMaxTaps>, kLpSets> tap{};  // lp_set_taps
   std::array<int, kLpSets> taps{};
-  std::vector<uint8_t> first_set;
+  std::array<uint8_t, kLpSets> group{};  // lp_group(taps[s])
 
   LpTable() {
-    for (int s = 0; s < kLpSets; ++s) taps[s] = lp_set_taps(s, tap[s]);
+    for (int s = 0; s < kLpSets; ++s) {
+      taps[s] = lp_set_taps(s, tap[s]);
+      group[s] = static_cast<uint8_t>(lp_group(taps[s]));
+    }
   }
 
   void set_defaults(int s) {
     for (int t = 0; t < kLpMaxTaps; ++t) weight[s][t] = t < 3 && s >= kLpFirstDefault ? kLpDefault[s - kLpFirstDefault][t] : 0;
   }
-  // The first enabled set inside `mask` is the smallest index of an enabled set whose mask is a subset of it (kLpNoSet,
-  // 255, is above every index): each set marks its own mask, then the minimum flows to the supersets one offset bit
-  // at a time (14 passes over the 2^14 masks instead of up to 38 tests per mask; the same table).
+  // Starts the selection once `enabled` is final. The answers are worked out as masks are first asked (a patch
+  // meets a few hundred of the 2^14 masks: filling the whole table cost 1.8% of a web-horse decode, callgrind).
   void build_selection() {
-    constexpr uint32_t n = 1u << kLpOffsets;
-    first_set.assign(n, kLpNoSet);
-    uint8_t* f = first_set.data();
-    for (int s = kLpSets; s-- > 0;)
-      if (enabled[s]) f[kLpSetMask[s]] = static_cast<uint8_t>(s);
-#if defined(__wasm__)
-    // The plain loop in the wasm module: the form below costs it 430 B gzipped.
-    for (uint32_t stride = 1; stride < n; stride <<= 1)
-      for (uint32_t base = 0; base < n; base += 2 * stride)
-        for (uint32_t i = base; i < base + stride; ++i) {
-          const uint8_t a = f[i], b = f[i + stride];
-          f[i + stride] = a < b ? a : b;
-        }
-#else
-    // The two halves of each block do not overlap: said with __restrict, the inner loop is vectorized.
-    for (uint32_t stride = 1; stride < n; stride <<= 1)
-      for (uint32_t base = 0; base < n; base += 2 * stride) {
-        const uint8_t* __restrict lo = f + base;
-        uint8_t* __restrict hi = f + base + stride;
-        for (uint32_t i = 0; i < stride; ++i) hi[i] = lo[i] < hi[i] ? lo[i] : hi[i];
-      }
-#endif
+    first_set_.assign(size_t{1} << kLpOffsets, kUnresolved);
+    num_enabled_ = 0;
+    for (int s = 0; s < kLpSets; ++s)
+      if (enabled[s]) enabled_set_[num_enabled_++] = static_cast<uint8_t>(s);
   }
+  // The smallest index of an enabled set whose mask is a subset of `mask` (kLpNoSet, 255, if none).
+  uint8_t select(uint32_t mask) const {
+    const uint8_t s = first_set_[mask];
+    return s != kUnresolved ? s : resolve(mask);
+  }
+
+ private:
+  static constexpr uint8_t kUnresolved = 254;  // not a set index (< kLpSets) nor kLpNoSet
+#if defined(__GNUC__) || defined(__clang__)
+  __attribute__((noinline))
+#endif
+  uint8_t resolve(uint32_t mask) const {
+    uint8_t s = kLpNoSet;
+    for (int k = 0; k < num_enabled_; ++k)
+      if ((kLpSetMask[enabled_set_[k]] & ~mask) == 0) {
+        s = enabled_set_[k];
+        break;
+      }
+    return first_set_[mask] = s;
+  }
+  std::array<uint8_t, kLpSets> enabled_set_{};  // the enabled sets, in increasing order
+  int num_enabled_ = 0;
+  mutable std::vector<uint8_t> first_set_;  // per mask: select's answer, or kUnresolved before it is asked
 };
 
 // The tap mask of a 14-bit occupancy key (LpRaster::mask_at): key bits 0-2 are the cells i - 3 .. i - 1 of row j,
@@ -430,7 +437,8 @@ inline bool lp_neighbour_mean(const LpNeighbours& nb, uint32_t l, const std::vec
 // §9.7.4 The activity context of a height: from the residuals already coded at the activity offsets (8: none).
 template <typename View>
 inline int lp_activity(const View& view) {
-  int64_t sum = 0, count = 0;
+  int64_t sum = 0;
+  uint32_t count = 0;
   for (int t : kLpActivityTap) {
     const int64_t a = view.activity(t);
     if (a >= 0) {
@@ -439,10 +447,14 @@ inline int lp_activity(const View& view) {
     }
   }
   if (count == 0) return 8;
-  // 3 * sum / count, count 1..6: divisions by constants (multiplications) instead of a 64-bit division per height.
+  // The bit length of x = floor(3 * sum / count), at most 7: 7 once x >= 64, that is 3 * sum >= 64 * count; below
+  // that 3 * sum < 384, and floor(3 * sum / count) = 3 * sum * ceil(2^16 / count) >> 16 (checked for every sum and
+  // count 1..6), so no division per height.
   const uint64_t s3 = static_cast<uint64_t>(3 * sum);
-  const uint64_t x = count == 1 ? s3 : count == 2 ? s3 / 2 : count == 3 ? s3 / 3 : count == 4 ? s3 / 4 : count == 5 ? s3 / 5 : s3 / 6;
-  return x == 0 ? 0 : std::min(int_class(x) + 1, 7);  // the bit length of x, at most 7
+  if (s3 >= 64 * uint64_t{count}) return 7;
+  static constexpr uint32_t kInverse[7] = {0, 65536, 32768, 21846, 16384, 13108, 10923};
+  const uint32_t x = static_cast<uint32_t>(s3) * kInverse[count] >> 16;
+  return x == 0 ? 0 : int_class(x) + 1;
 }
 inline int lp_activity(const std::array<uint32_t, kLpOffsets>& id, const std::vector<int64_t>& res,
                        const std::vector<uint8_t>& coded) {
@@ -490,7 +502,7 @@ bool code_lp_heights(const Level& level, LpRaster& raster, const LpTable& table,
       previous = h[l];
       return true;
     }
-    const int s = table.first_set[mask];
+    const int s = table.select(mask);
     int64_t pred = previous;
     if (s != kLpNoSet) {
       pred = lp_predict(table, s, view);
@@ -500,7 +512,7 @@ bool code_lp_heights(const Level& level, LpRaster& raster, const LpTable& table,
     }
     pred = pred < lo ? lo : pred > hi ? hi : pred;
     const int activity = lp_activity(view);
-    const int group = s == kLpNoSet ? kLpGroups - 1 : lp_group(table.taps[s]);
+    const int group = s == kLpNoSet ? kLpGroups - 1 : table.group[static_cast<size_t>(s)];
     int64_t r;
     SignedIntModel& model = m.residual[group][activity];
     BitModel& sign = m.sign_context ? m.sign[group][lp_sign_context(view, pred)] : model.sign;

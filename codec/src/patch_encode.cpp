@@ -59,7 +59,7 @@ void record_heights(const Level& level, const LpRaster& raster, const LpTable& t
   std::array<uint32_t, kLpOffsets> id;
   for (uint32_t l : raster.order()) {
     if (placed[l]) continue;
-    const int s = table.first_set[raster.taps(level.coord[l][0], level.coord[l][1], id)];
+    const int s = table.select(raster.taps(level.coord[l][0], level.coord[l][1], id));
     ChosenHeight c;
     c.vertex = global[l];
     c.pair = static_cast<uint8_t>(pair);

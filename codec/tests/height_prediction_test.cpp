@@ -182,6 +182,41 @@ TEST(HeightPrediction, FitRecoversAPlane) {
   EXPECT_LT(total / samples.size(), 0.9);
 }
 
+// §9.7.4 The activity context against its definition, min(bit length of floor(3 * sum / count), 7) over the coded
+// residuals at the activity offsets (8 with none), for every count and sums around each class boundary.
+TEST(HeightPrediction, ActivityContextMatchesItsDefinition) {
+  std::array<int64_t, kLpOffsets> activity{};
+  std::array<int64_t, kLpOffsets> height{};
+  std::array<int64_t, kLpOffsets> delta{};
+  for (int t = 0; t < kLpOffsets; ++t) delta[static_cast<size_t>(t)] = t;
+  const LpCellView view{height.data(), activity.data(), delta.data()};
+  std::mt19937 rng(7);
+  for (int count = 0; count <= 6; ++count) {
+    for (int64_t sum = 0; sum < 3000; sum += sum < 600 ? 1 : 37) {
+      activity.fill(-1);
+      // `count` of the six activity offsets hold residuals summing to `sum`, the first holding the rest.
+      int64_t rest = count ? sum : 0;
+      for (int k = count - 1; k >= 0; --k) {
+        const int64_t a = k == 0 ? rest : static_cast<int64_t>(rng() % static_cast<uint32_t>(rest + 1));
+        activity[static_cast<size_t>(kLpActivityTap[k])] = a;
+        rest -= a;
+      }
+      const int64_t used = count ? sum : 0;
+      int want = 8;
+      if (count > 0) {
+        const int64_t x = 3 * used / count;
+        int bits = 0;
+        while (bits < 63 && (x >> bits) != 0) ++bits;
+        want = std::min(bits, 7);
+      }
+      EXPECT_EQ(lp_activity(view), want) << count << " " << sum;
+    }
+  }
+  activity.fill(-1);
+  for (int k = 0; k < 6; ++k) activity[static_cast<size_t>(kLpActivityTap[k])] = int64_t{1} << 41;  // |r| < 2^41
+  EXPECT_EQ(lp_activity(view), 7);
+}
+
 // The table's fields round-trip through the shared coder, enabled and fitted flags included.
 TEST(HeightPrediction, TableRoundTrip) {
   LpTable table;
@@ -223,7 +258,7 @@ TEST(HeightPrediction, TableRoundTrip) {
   EXPECT_EQ(nv, values.size());
   EXPECT_EQ(got.enabled, sent.enabled);
   EXPECT_EQ(got.weight, sent.weight);
-  EXPECT_EQ(got.first_set, sent.first_set);
+  for (uint32_t mask = 0; mask < (1u << kLpOffsets); ++mask) ASSERT_EQ(got.select(mask), sent.select(mask)) << mask;
 }
 
 }  // namespace
