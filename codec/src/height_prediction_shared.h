@@ -187,6 +187,17 @@ constexpr bool kLpOccupancyMasks = true;
 // §9.7.4 A dense raster cell without a vertex (code_lp_heights' per-cell heights; no height is negative).
 constexpr int64_t kLpEmptyCell = INT64_MIN;
 
+// The index of the lowest set bit of bits (not 0).
+inline int lowest_bit(uint32_t bits) {
+#if defined(__GNUC__) || defined(__clang__)
+  return __builtin_ctz(bits);
+#else
+  int i = 0;
+  while (!(bits >> i & 1u)) ++i;
+  return i;
+#endif
+}
+
 // §9.7.3 A patch's raster order and its lattice lookup. The order is by increasing (j, i, local id); the vertex at
 // a lattice point is the one of lowest local id there. build() returns how many vertices share their lattice point
 // with a lower local id (a self-overlapping patch has some). Small footprints use a dense grid with a margin for
@@ -227,14 +238,6 @@ class LpRaster {
           ++shared;
         }
       }
-      order_.reserve(n);
-      std::sort(extra_.begin(), extra_.end());
-      size_t e = 0;
-      for (size_t b = 0; b < grid_.size(); ++b) {
-        if (grid_[b] == kNone) continue;
-        order_.push_back(grid_[b]);
-        while (e < extra_.size() && extra_[e].first == static_cast<int64_t>(b)) order_.push_back(extra_[e++].second);
-      }
       for (int t = 0; t < kLpOffsets; ++t) delta_[t] = kLpOffset[t][1] * width_ + kLpOffset[t][0];
       // One bit per cell, a row of width bits per lattice row, one byte of padding (mask_at reads two bytes).
       row_bytes_ = (width + 7) / 8 + 1;
@@ -242,6 +245,23 @@ class LpRaster {
       for (uint32_t l = 0; kLpOccupancyMasks && l < n; ++l) {
         const int64_t x = level.coord[l][0] - i0_, y = level.coord[l][1] - j0_;
         occupied_[static_cast<size_t>(y * row_bytes_ + (x >> 3))] |= static_cast<uint8_t>(1u << (x & 7));
+      }
+      // The order: the occupied cells in increasing cell index, each cell's vertices by local id.
+      order_.reserve(n);
+      std::sort(extra_.begin(), extra_.end());
+      size_t e = 0;
+      auto visit = [&](size_t b) {
+        order_.push_back(grid_[b]);
+        while (e < extra_.size() && extra_[e].first == static_cast<int64_t>(b)) order_.push_back(extra_[e++].second);
+      };
+      if (kLpOccupancyMasks) {  // the set bits of the occupancy rows (a quarter or less of the cells hold a vertex)
+        for (int64_t y = 0; y < height; ++y)
+          for (int64_t k = 0; k + 1 < row_bytes_; ++k)
+            for (uint32_t bits = occupied_[static_cast<size_t>(y * row_bytes_ + k)]; bits != 0; bits &= bits - 1)
+              visit(static_cast<size_t>(y * width + 8 * k + lowest_bit(bits)));
+      } else {
+        for (size_t b = 0; b < grid_.size(); ++b)
+          if (grid_[b] != kNone) visit(b);
       }
       return shared;
     }

@@ -193,9 +193,13 @@ bool SpiraleReversi::finish(std::vector<uint32_t>& corner_vertex, std::vector<ui
       non_manifold_ = false;
       return fail("an edge is left open");
     }
-    for (size_t i = c; i < c + 3; ++i) rec[i] = static_cast<uint32_t>(records_[rec[i]].id);  // records become ids
-    if (rec[c] == rec[c + 1] || rec[c + 1] == rec[c + 2] || rec[c] == rec[c + 2])
-      return fail("a decoded triangle uses a vertex twice");
+    // Records become ids; one branch for the three tests.
+    const uint32_t x = static_cast<uint32_t>(records_[rec[c]].id), y = static_cast<uint32_t>(records_[rec[c + 1]].id),
+                   z = static_cast<uint32_t>(records_[rec[c + 2]].id);
+    rec[c] = x;
+    rec[c + 1] = y;
+    rec[c + 2] = z;
+    if ((x == y) | (y == z) | (x == z)) return fail("a decoded triangle uses a vertex twice");
   }
   // A root's count is the number of corners set to its records (set_corner, merge): its vertex's triangle count.
   if (valence) {
