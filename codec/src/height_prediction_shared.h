@@ -526,10 +526,12 @@ bool code_lp_heights(const Level& level, LpRaster& raster, const LpTable& table,
   res.assign(n, 0);
   coded.assign(n, 0);
   int64_t previous = lo + (hi - lo) / 2;
+  int64_t activity_of_last = -1;  // |residual| of the height code_one did last, -1 if it was placed
   // One height in raster order, seen through `view` with tap mask `mask`.
   auto code_one = [&](uint32_t l, uint32_t mask, const LpCellView& view) {
     if (placed[l]) {
       previous = h[l];
+      activity_of_last = -1;
       return true;
     }
     const int s = table.select(mask);
@@ -553,6 +555,7 @@ bool code_lp_heights(const Level& level, LpRaster& raster, const LpTable& table,
     res[l] = r;
     coded[l] = 1;
     previous = v;
+    activity_of_last = r < 0 ? -r : r;
     return true;
   };
   // Dense: the heights and activities live in the grid's cells, written as each cell's first vertex is known.
@@ -585,9 +588,9 @@ bool code_lp_heights(const Level& level, LpRaster& raster, const LpTable& table,
       }
     }
     if (!code_one(l, mask, view)) return false;
-    if (dense && raster.owner(static_cast<int64_t>(b)) == l) {
-      ch[b] = h[l];
-      ca[b] = coded[l] ? (res[l] < 0 ? -res[l] : res[l]) : -1;
+    if (dense && raster.owner(static_cast<int64_t>(b)) == l) {  // h[l] and its activity, as code_one left them
+      ch[b] = previous;
+      ca[b] = activity_of_last;
     }
   }
   return true;
