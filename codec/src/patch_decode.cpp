@@ -116,7 +116,7 @@ Status read_patches(const uint8_t* data, size_t size, uint64_t offset, const Clo
       const uint32_t v = global[l];
       // |i|, |j| are bounded by the propagation from a bounded base (one step per triangle), so no overflow here.
       const int64_t u = lc.A * level.coord[l][0] + lc.B * level.coord[l][1], w = lc.C * level.coord[l][1];
-      if ((u < lo[cu]) | (u > hi[cu]) | (w < lo[cw]) | (w > hi[cw]))  // one branch for the four tests
+      if (u < lo[cu] || u > hi[cu] || w < lo[cw] || w > hi[cw])
         return fail(Error::bad_position, "8.3", which + ": vertex " + std::to_string(v) + " outside the bounding box");
       if (known[v] && (q[3 * size_t{v} + cu] != u || q[3 * size_t{v} + cw] != w))
         return fail(Error::bad_position, "8.3", which + ": vertex " + std::to_string(v) + " placed twice, differently");
