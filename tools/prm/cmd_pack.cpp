@@ -326,6 +326,7 @@ void add_pack_command(CLI::App& root) {
         j["regular_patches"] = rep.regular_patches;
         j["refined_vertices"] = s.deviation_inserts;
         j["refined_moves"] = s.deviation_moves;
+        j["refined_rounded"] = s.deviation_rounded;
         j["height_lambda"] = r.codec_options.height_lambda;
         j["height_sweeps"] = r.codec_options.height_lambda > 0 ? r.codec_options.height_sweeps : 0;
       }
