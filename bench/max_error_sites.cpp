@@ -9,6 +9,7 @@
 // For every site: the largest deviation of each stage within one grid size of it, and the geometry there (the largest
 // dihedral angle of the input within a grid size: a crease; the PRM's irregular vertices within a grid size: a seam).
 //   refined the remesh's mesh with the local refinement at --refine R (fraction of the diagonal), rounded
+//   refunr  the same before the rounding (what the refinement itself leaves; refunr < R < refined: the rounding)
 // Usage: prm_bench_max_error_sites MESH TARGET_ERROR [K] [--max-error E] [--refine R] [--local-refinement]
 // (--max-error and --local-refinement: the options of the pack whose stream is the "decoded" stage)
 #include <algorithm>
@@ -131,7 +132,7 @@ int main(int argc, char** argv) {
     const prm::remesh::RemeshResult r = prm::remesh::remesh(input, ro);
     s.mesh = r.prm.mesh;
     if (refine > 0)
-      std::printf("%s: %zu input vertices inserted, %zu refused; %zu vertices, %zu of %zu faces regular\n", name,
+      if (rounded) std::printf("%s: %zu input vertices inserted, %zu refused; %zu vertices, %zu of %zu faces regular\n", name,
                   r.prm.stats.deviation_inserts, r.prm.stats.deviation_refused, r.prm.stats.vertices,
                   r.prm.stats.regular_faces, r.prm.stats.faces);
     if (rounded)
@@ -145,6 +146,7 @@ int main(int argc, char** argv) {
   remeshed("nofit", false, po.error_flip_weight, false);
   remeshed("noflip", true, -1, false);
   remeshed("rounded", true, po.error_flip_weight, true);
+  if (refine > 0) remeshed("refunr", true, po.error_flip_weight, false, refine);
   if (refine > 0) remeshed("refined", true, po.error_flip_weight, true, refine);
   stages.push_back({"decoded", prm::pipeline::to_mesh(decoded.value), {}, {}, {}});
 

@@ -28,6 +28,10 @@ constexpr double kFaceProbeShare = 0.5;
 constexpr double kMaxFaceGrid = 8;
 // A point of a triangle this close to an edge (smallest barycentric coordinate) splits the edge, not the triangle.
 constexpr double kEdgeBarycentric = 0.02;
+// round_towards_input: the vertices near places straying more than this share of the bound are rounded towards the
+// input, when another rounding strays less than kRoundGain x the nearest one.
+constexpr double kRoundShare = 0.75;
+constexpr double kRoundGain = 0.98;
 // The points of a mesh triangle the first refinement measured against the input (thin_sheets false): its centroid
 // and its edges' midpoints.
 constexpr double kProbes[4][3] = {{1.0 / 3, 1.0 / 3, 1.0 / 3}, {0.5, 0.5, 0}, {0, 0.5, 0.5}, {0.5, 0, 0.5}};
@@ -550,6 +554,104 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
   prm.face_regular.resize(m.triangles.size(), 0);
   for (size_t f = 0; f < m.triangles.size(); ++f) label_face(prm, f);
   return st;
+}
+
+// Spec-free encoder-side choice (h22max4): the stream holds every coordinate rounded to the frame's step (§10.1), which
+// moves a vertex by up to half a step per axis, as much as 0.45x the bound at the RMS target's step. Near the bound
+// that rounding alone pushes a place over it (venus at 2e-4: 1.38e-3 refined, 1.56e-3 rounded). So the vertices of
+// triangles that stray more than kRoundShare x the bound, or that an input point farther than that is closest to,
+// take, of the 2-8 ways to round them (each coordinate down or up; a lattice coordinate, already on its step,
+// stays), the one whose triangles stray least (their probe points, pr>in, and those input points, in>pr), and are
+// put exactly there (the stream then holds that point). Worst first; a rounding that turns a triangle over is not
+// taken; where the nearest rounding is as good, the vertex is left as it was.
+size_t round_towards_input(PrmMesh& prm, const Mesh& input, const AabbTree& input_tree, double bound) {
+  Mesh& m = prm.mesh;
+  const QuantFrame& frame = prm.frame;
+  const double share2 = kRoundShare * kRoundShare * bound * bound;
+  std::vector<std::vector<uint32_t>> vertex_faces(m.positions.size());
+  for (uint32_t f = 0; f < m.triangles.size(); ++f)
+    for (uint32_t v : m.triangles[f]) vertex_faces[v].push_back(f);
+  // in>pr: the input vertices farther than the share from the mesh, by their closest mesh face.
+  const AabbTree tree(m);
+  std::vector<AabbTree::Hit> hits(input.positions.size());
+  tbb::parallel_for(size_t{0}, input.positions.size(), [&](size_t v) { hits[v] = tree.closest(input.positions[v]); });
+  std::vector<std::vector<uint32_t>> attached(m.triangles.size());
+  for (uint32_t v = 0; v < hits.size(); ++v)
+    if (hits[v].found() && hits[v].distance2 > share2) attached[hits[v].face].push_back(v);
+  // pr>in: each face's probe points.
+  std::vector<double> face_dev2(m.triangles.size(), 0.0);
+  tbb::parallel_for(size_t{0}, m.triangles.size(), [&](size_t f) {
+    face_dev2[f] = probe_deviation2(m, {m.triangles[f]}, input_tree, bound, true);
+  });
+  std::vector<std::pair<double, uint32_t>> order;
+  for (uint32_t v = 0; v < m.positions.size(); ++v) {
+    double worst = 0;
+    for (uint32_t f : vertex_faces[v]) {
+      worst = std::max(worst, face_dev2[f]);
+      for (uint32_t u : attached[f]) worst = std::max(worst, hits[u].distance2);
+    }
+    if (worst > share2) order.push_back({worst, v});
+  }
+  std::sort(order.begin(), order.end(), [](const auto& a, const auto& b) {
+    return a.first != b.first ? a.first > b.first : a.second < b.second;
+  });
+  size_t changed = 0;
+  for (const auto& [unused, v] : order) {
+    const std::vector<uint32_t>& faces = vertex_faces[v];
+    const std::vector<Tri> tris = triangles_of(m, faces);
+    std::vector<uint32_t> points;
+    for (uint32_t f : faces) points.insert(points.end(), attached[f].begin(), attached[f].end());
+    std::vector<Vec3> normals;
+    for (const Tri& t : tris) normals.push_back(face_normal(m, t));
+    const Vec3 x = m.positions[v];
+    // The worst of the triangles' probes and the attached input points with v at p; infinite when one turns over.
+    auto cost = [&](const Vec3& p) {
+      m.positions[v] = p;
+      for (size_t k = 0; k < tris.size(); ++k) {
+        const Vec3 n = face_normal(m, tris[k]);
+        if (!(dot(n, normals[k]) > 1e-3 * norm(n) * norm(normals[k]))) return std::numeric_limits<double>::infinity();
+      }
+      double worst = probe_deviation2(m, tris, input_tree, bound, true);
+      for (uint32_t u : points) {
+        double best = std::numeric_limits<double>::infinity();
+        for (const Tri& t : tris)
+          best = std::min(best, point_triangle_distance2(input.positions[u], m.positions[t[0]], m.positions[t[1]],
+                                                         m.positions[t[2]]));
+        worst = std::max(worst, best);
+      }
+      return worst;
+    };
+    std::array<std::array<double, 2>, 3> ways;
+    Vec3 nearest;
+    for (int a = 0; a < 3; ++a) {
+      const size_t k = static_cast<size_t>(a);
+      const double q = frame.to_quant(x[k], a), r = static_cast<double>(frame.quantize(x[k], a));
+      nearest[k] = frame.to_real(r, a);
+      const double top = std::ldexp(1.0, frame.bits) - 1;
+      if (std::fabs(q - r) < 1e-6) {
+        ways[k] = {r, r};  // on its step already (a lattice coordinate)
+      } else {
+        ways[k] = {std::clamp(std::floor(q), 0.0, top), std::clamp(std::ceil(q), 0.0, top)};
+      }
+    }
+    const double keep = cost(nearest);
+    double best = keep;
+    Vec3 chosen = nearest;
+    for (int c = 0; c < 8; ++c) {
+      Vec3 p;
+      for (int a = 0; a < 3; ++a) p[static_cast<size_t>(a)] = frame.to_real(ways[static_cast<size_t>(a)][(c >> a) & 1], a);
+      if (p == nearest) continue;
+      const double e = cost(p);
+      if (e < best * kRoundGain) best = e, chosen = p;
+    }
+    if (chosen == nearest) {
+      m.positions[v] = x;
+    } else {
+      m.positions[v] = chosen;
+      ++changed;
+    }
+  }
+  return changed;
 }
 
 }  // namespace prm::remesh

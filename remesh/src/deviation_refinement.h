@@ -57,4 +57,9 @@ struct DeviationRefinementStats {
 DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, const AabbTree& input_tree,
                                            const DeviationRefinementOptions& options);
 
+// After the refinement: the vertices near places straying more than 0.75x `bound` (model units) are put on the way of
+// rounding them to prm.frame's step whose triangles stray least from the input (the stream holds rounded
+// coordinates; a lattice coordinate stays). Returns how many were put elsewhere than their nearest rounding.
+size_t round_towards_input(PrmMesh& prm, const Mesh& input, const AabbTree& input_tree, double bound);
+
 }  // namespace prm::remesh

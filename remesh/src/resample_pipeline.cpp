@@ -219,6 +219,11 @@ PrmMesh resample_and_merge(const LayoutInput& layout, const ResampleOptions& opt
     st.deviation_inserts = ds.inserted;
     st.deviation_refused = ds.refused;
     st.deviation_moves = ds.moved;
+    // The rounding to the stream's step, chosen near the bound (--local-refinement only: --max-error keeps the first
+    // thin-sheet refinement, bench/README.md "Worst-case error").
+    if (options.refine_notches) {
+      st.deviation_rounded = round_towards_input(prm, input, tree, options.max_deviation);
+    }
     st.vertices = prm.mesh.positions.size();
     st.faces = prm.mesh.triangles.size();
     st.regular_faces = static_cast<size_t>(std::count(prm.face_regular.begin(), prm.face_regular.end(), 1));

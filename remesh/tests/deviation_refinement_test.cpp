@@ -114,4 +114,39 @@ TEST(DeviationRefinement, LatticeVertexReachesAMissedTipAlongItsAxis) {
 }
 
 }  // namespace
+
+// round_towards_input (h22max4): the stream holds coordinates rounded to the frame's step. A square 0.55 steps above
+// the frame's origin and 0.1 above the input (a square as large at 0.45): rounding to the nearest step puts it at 1, 0.55 from
+// the input; rounded down it is 0.45 away, so every vertex goes down, exactly onto its step, its lattice-exact x and y
+// unchanged. With the input at 0.6 the nearest rounding is the better one and nothing moves.
+namespace {
+Mesh square(double z, double half) {
+  Mesh m;
+  m.positions = {{-half, -half, z}, {half, -half, z}, {half, half, z}, {-half, half, z}};
+  m.triangles = {{0, 1, 2}, {0, 2, 3}};
+  return m;
+}
+}  // namespace
+
+TEST(DeviationRefinement, RoundingTowardsTheInputNearTheBound) {
+  for (const double plane : {0.45, 0.6}) {
+    const Mesh input = square(plane, 5.0);
+    const AabbTree tree(input);
+    PrmMesh prm;
+    prm.mesh = square(0.55, 5.0);
+    prm.frame.bits = 8;
+    prm.frame.origin = {-5.0, -5.0, 0.0};
+    prm.frame.step = 1.0;
+    const size_t changed = round_towards_input(prm, input, tree, 0.1);
+    std::printf("input at z %.2f: %zu rounded towards it\n", plane, changed);
+    for (size_t v = 0; v < 4; ++v) {
+      const Vec3& p = prm.mesh.positions[v];
+      EXPECT_EQ(std::fabs(p[0]), 5.0);
+      EXPECT_EQ(std::fabs(p[1]), 5.0);
+      EXPECT_EQ(p[2], plane < 0.5 ? 0.0 : 0.55) << "vertex " << v;
+    }
+    EXPECT_EQ(changed, plane < 0.5 ? 4u : 0u);
+  }
+}
+
 }  // namespace prm::remesh

@@ -107,8 +107,9 @@ void add_pack_command(CLI::App& root) {
                 "Without --max-error: insert or move vertices where the remeshed surface strays more than " +
                     std::to_string(pipeline::kLocalRefineShare * pipeline::kDefaultMaxErrorPerTarget).substr(0, 3) +
                     " x --target-error from the input (thin sheets the grid cuts off, lattice vertices off the input; "
-                    "bench/README.md 'Worst-case error': the horse's max from 25x to 9.1x the target for +6.6% bytes, "
-                    "venus from 16x to 8.1x for +4.4%, CGAL's armadillo to 7.2x for +0.2%)");
+                    "near that bound, the rounding to the step that strays least; bench/README.md 'Worst-case error': the "
+                    "horse's max from 25x to 8.5x the target for +6.7% bytes, venus from 16x to 7.3x for +4.6%, CGAL's "
+                    "armadillo to 7.2x for -0.9%)");
   cmd->add_flag("--adaptive", opt->adaptive,
                 "A grid size per relief (format 1.5, spec §8.4.2): each relief's grid chosen by equal slope (the same "
                 "marginal bytes per unit of squared error in every relief) from its error measured on two uniform "
@@ -326,6 +327,7 @@ void add_pack_command(CLI::App& root) {
         j["regular_patches"] = rep.regular_patches;
         j["refined_vertices"] = s.deviation_inserts;
         j["refined_moves"] = s.deviation_moves;
+        j["refined_rounded"] = s.deviation_rounded;
         j["height_lambda"] = r.codec_options.height_lambda;
         j["height_sweeps"] = r.codec_options.height_lambda > 0 ? r.codec_options.height_sweeps : 0;
       }

@@ -62,6 +62,7 @@ struct ResampleStats {
   size_t heights_moved = 0, height_moves_reverted = 0;  // least-squares heights (height_fitting.h)
   size_t deviation_inserts = 0, deviation_refused = 0;    // local refinement (deviation_refinement.h)
   size_t deviation_moves = 0;                             // its rim moves (irregular vertices moved, none inserted)
+  size_t deviation_rounded = 0;  // then vertices put on another rounding than the nearest (round_towards_input)
   // Quantization (quantized_separation.h): faces that lost their area and vertices that shared a position when
   // rounded to the frame, the vertices moved so that none does, and what is left (faces and vertices).
   size_t quantized_degenerate = 0, quantized_rounding_turned = 0, quantized_coincident = 0, quantized_moves = 0,
