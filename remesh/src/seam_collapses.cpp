@@ -23,7 +23,7 @@ size_t SeamOptimizer::merge_coincident() {
     const VH x(b), y(a);
     if (mesh_.status(x).deleted() || mesh_.status(y).deleted()) continue;
     const HH h = mesh_.find_halfedge(x, y);
-    if (h.is_valid() && mesh_.is_collapse_ok(h) && !moves_boundary(h)) {
+    if (h.is_valid() && is_collapse_ok(mesh_, h) && !moves_boundary(h)) {
       mesh_.collapse(h);
       ++merged;
     }

@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "openmesh_types.h"
+#include "openmesh_queries.h"
 #include "seam_optimization.h"
 
 namespace prm::remesh {
