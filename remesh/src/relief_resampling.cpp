@@ -47,13 +47,14 @@ class Resampler {
         queued[v] = 1;
       }
     std::vector<int> stuck;
+    std::vector<int> ring;  // one buffer for all the pops
     while (!queue.empty()) {
       const int x = queue.front();
       queue.pop_front();
       queued[static_cast<size_t>(x)] = 0;
       const OMesh::VertexHandle vx(x);
       if (mesh_.status(vx).deleted()) continue;
-      std::vector<int> ring;
+      ring.clear();
       for (auto vv : mesh_.vv_range(vx)) ring.push_back(vv.idx());
       if (try_collapse(vx)) {
         ++out.collapses;
