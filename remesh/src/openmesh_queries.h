@@ -2,9 +2,9 @@
 // remesher's half-edge mesh (openmesh_types.h). The same answers as TriConnectivity::is_collapse_ok,
 // TriConnectivity::is_flip_ok and PolyConnectivity::valence, without their cost: Debian's libOpenMeshCore is
 // built with assertions, so each property access inside the library builds and compares a type-name string
-// (a third of resample_relief's time on the venus at effort 0, issue 21). Here the accesses are the inline ones
-// of OpenMesh's headers. is_collapse_ok also leaves the status "tagged" bits alone (the library's version uses
-// them as scratch; nothing in the remesher reads them).
+// (is_collapse_ok was a third of resample_relief's time on the venus at effort 0, issue 21). Here the accesses
+// are the inline ones of OpenMesh's headers. is_collapse_ok also leaves the status "tagged" bits alone (the
+// library's version uses them as scratch; nothing in the remesher reads them).
 #pragma once
 
 #include <cassert>
