@@ -39,7 +39,7 @@ double SeamOptimizer::triangle_error(const Vec3& a, const Vec3& b, const Vec3& c
 // `q`: on success, the quad whose diagonal was flipped.
 bool SeamOptimizer::try_error_flip(EH e, double error_unit, Quad& q) {
   if (!flippable(e, q)) return false;
-  const int va = static_cast<int>(mesh_.valence(q.a)), vb = static_cast<int>(mesh_.valence(q.b));
+  const int va = valence(mesh_, q.a), vb = valence(mesh_, q.b);
   if (va <= 3 || vb <= 3) return false;
   AabbTree::Hit hint;  // through the quad's four triangles
   const double before =
@@ -48,7 +48,7 @@ bool SeamOptimizer::try_error_flip(EH e, double error_unit, Quad& q) {
       triangle_error(pos(q.c), pos(q.a), pos(q.d), hint) + triangle_error(pos(q.d), pos(q.b), pos(q.c), hint);
   if (!(after < before * (1.0 - kErrorFlipGain))) return false;
   auto dev = [](int v) { return (v - 6) * (v - 6); };
-  const int vc = static_cast<int>(mesh_.valence(q.c)), vd = static_cast<int>(mesh_.valence(q.d));
+  const int vc = valence(mesh_, q.c), vd = valence(mesh_, q.d);
   const int grow =
       dev(va - 1) + dev(vb - 1) + dev(vc + 1) + dev(vd + 1) - (dev(va) + dev(vb) + dev(vc) + dev(vd));
   if (grow > 0 && !(before - after >= error_flip_weight_ * grow * error_unit)) return false;

@@ -68,7 +68,7 @@ bool SeamOptimizer::repair_face(FH f) {
   // A flip that leaves fewer bad triangles among the two it touches.
   for (auto h : mesh_.fh_range(f)) {
     const EH e = mesh_.edge_handle(h);
-    if (mesh_.is_boundary(e) || !mesh_.is_flip_ok(e)) continue;
+    if (mesh_.is_boundary(e) || !is_flip_ok(mesh_, e)) continue;
     const HH o = mesh_.opposite_halfedge_handle(h);
     const VH a = mesh_.from_vertex_handle(h), b = mesh_.to_vertex_handle(h);
     const VH c = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h));
@@ -90,7 +90,7 @@ bool SeamOptimizer::repair_face(FH f) {
 
 // For repairs: the collapse x -> y removes at least one bad triangle and turns no good triangle bad.
 bool SeamOptimizer::collapse_improves(HH h) {
-  if (!mesh_.is_collapse_ok(h) || moves_boundary(h)) return false;
+  if (!is_collapse_ok(mesh_, h) || moves_boundary(h)) return false;
   const VH x = mesh_.from_vertex_handle(h), y = mesh_.to_vertex_handle(h);
   const Vec3 py = pos(y), px = pos(x);
   int bad_before = 0, bad_after = 0;
@@ -229,10 +229,10 @@ bool SeamOptimizer::collapse_face(FH f) {
     if (!ok || checked == 0) continue;
     const VH x1 = corner[(k + 1) % 3], x2 = corner[(k + 2) % 3];
     HH h1 = mesh_.find_halfedge(x1, y);
-    if (!h1.is_valid() || !mesh_.is_collapse_ok(h1) || moves_boundary(h1)) continue;
+    if (!h1.is_valid() || !is_collapse_ok(mesh_, h1) || moves_boundary(h1)) continue;
     mesh_.collapse(h1);
     const HH h2 = mesh_.find_halfedge(x2, y);
-    if (h2.is_valid() && mesh_.is_collapse_ok(h2) && !moves_boundary(h2)) mesh_.collapse(h2);
+    if (h2.is_valid() && is_collapse_ok(mesh_, h2) && !moves_boundary(h2)) mesh_.collapse(h2);
     return true;
   }
   return false;

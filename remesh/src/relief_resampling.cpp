@@ -5,7 +5,7 @@
 #include <stdexcept>
 
 #include "collapse_rules.h"
-#include "openmesh_types.h"
+#include "openmesh_queries.h"
 
 namespace prm::remesh {
 namespace {
@@ -47,13 +47,14 @@ class Resampler {
         queued[v] = 1;
       }
     std::vector<int> stuck;
+    std::vector<int> ring;  // one buffer for all the pops
     while (!queue.empty()) {
       const int x = queue.front();
       queue.pop_front();
       queued[static_cast<size_t>(x)] = 0;
       const OMesh::VertexHandle vx(x);
       if (mesh_.status(vx).deleted()) continue;
-      std::vector<int> ring;
+      ring.clear();
       for (auto vv : mesh_.vv_range(vx)) ring.push_back(vv.idx());
       if (try_collapse(vx)) {
         ++out.collapses;
@@ -120,7 +121,7 @@ class Resampler {
       // Prefer grid vertices, then vertices on grid edges, then the rest.
       const int rank = Y.kind == SliceKind::Lattice ? 3 : Y.kind == SliceKind::Crossing ? 2 : 1;
       if (rank <= best_rank) continue;
-      if (!mesh_.is_collapse_ok(h) || !collapse_keeps_orientation(x, y) || adds_shared_chord(x, y)) continue;
+      if (!is_collapse_ok(mesh_, h) || !collapse_keeps_orientation(x, y) || adds_shared_chord(x, y)) continue;
       best = h;
       best_rank = rank;
     }
@@ -144,7 +145,7 @@ class Resampler {
       const auto c1 = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(h));
       const auto o = mesh_.opposite_halfedge_handle(h);
       const auto c2 = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(o));
-      if (!mesh_.is_flip_ok(e) || (shared(sv(c1)) && shared(sv(c2)))) continue;
+      if (!is_flip_ok(mesh_, e) || (shared(sv(c1)) && shared(sv(c2)))) continue;
       // Faces (x, y, c1) and (y, x, c2) become (c1, x, c2) and (c2, y, c1).
       const double q1 = orient(sv(c1), X, sv(c2));
       const double q2 = orient(sv(c2), Y, sv(c1));

@@ -1,6 +1,8 @@
 // Paper §2.3: loop breaking (coincident seam vertices merged) and the collapses of the vertices on relief
 // boundaries onto grid vertices, never changing the topology.
+#include <algorithm>
 #include <cmath>
+#include <vector>
 #include <queue>
 
 #include "prm/vec3.h"
@@ -23,7 +25,7 @@ size_t SeamOptimizer::merge_coincident() {
     const VH x(b), y(a);
     if (mesh_.status(x).deleted() || mesh_.status(y).deleted()) continue;
     const HH h = mesh_.find_halfedge(x, y);
-    if (h.is_valid() && mesh_.is_collapse_ok(h) && !moves_boundary(h)) {
+    if (h.is_valid() && is_collapse_ok(mesh_, h) && !moves_boundary(h)) {
       mesh_.collapse(h);
       ++merged;
     }
@@ -31,19 +33,48 @@ size_t SeamOptimizer::merge_coincident() {
   return merged;
 }
 
+// The cheapest lattice neighbour y whose collapse x -> y is valid; among equal costs, the first in OpenMesh's
+// order around x. The candidates are tested in that (cost, order) order, so that only the first valid one and
+// the invalid ones before it pay for collapse_ok.
 bool SeamOptimizer::best_lattice_target(VH x, HH& best, double& best_cost) {
   best = HH();
   best_cost = HUGE_VAL;
+  struct Candidate {
+    double cost;
+    int order;
+    HH h;
+  };
+  constexpr int kLocal = 16;
+  Candidate local[kLocal];
+  std::vector<Candidate> more;  // past kLocal lattice neighbours
+  int n = 0;
   for (auto h : mesh_.voh_range(x)) {
     const VH y = mesh_.to_vertex_handle(h);
     if (!mv(y).lattice) continue;
-    const double c = collapse_cost(x, y);
-    if (c < best_cost && collapse_ok(h)) {
-      best_cost = c;
-      best = h;
-    }
+    const Candidate c{collapse_cost(x, y), n, h};
+    if (!(c.cost < best_cost)) continue;  // never a target (also a NaN)
+    if (n < kLocal)
+      local[n] = c;
+    else
+      more.push_back(c);
+    ++n;
   }
-  return best.is_valid();
+  Candidate *first = local, *last = local + n;
+  if (n > kLocal) {
+    more.insert(more.begin(), local, local + kLocal);
+    first = more.data();
+    last = first + more.size();
+  }
+  std::sort(first, last, [](const Candidate& a, const Candidate& b) {
+    return a.cost < b.cost || (a.cost == b.cost && a.order < b.order);
+  });
+  for (const Candidate* c = first; c != last; ++c)
+    if (collapse_ok(c->h)) {
+      best_cost = c->cost;
+      best = c->h;
+      return true;
+    }
+  return false;
 }
 
 size_t SeamOptimizer::collapse_seam_vertices() {

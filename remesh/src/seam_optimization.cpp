@@ -58,7 +58,7 @@ SeamStats SeamOptimizer::run() {
 
 // Collapse x -> y leaves every surviving triangle around x valid?
 bool SeamOptimizer::collapse_ok(HH h) {
-  if (!mesh_.is_collapse_ok(h) || moves_boundary(h)) return false;
+  if (!is_collapse_ok(mesh_, h) || moves_boundary(h)) return false;
   const VH x = mesh_.from_vertex_handle(h), y = mesh_.to_vertex_handle(h);
   const Vec3 py = pos(y);
   for (auto oh : mesh_.voh_range(x)) {
@@ -78,7 +78,7 @@ bool SeamOptimizer::joins_reliefs(EH e) const {
 }
 
 bool SeamOptimizer::flippable(EH e, Quad& q) const {
-  if (mesh_.status(e).deleted() || mesh_.is_boundary(e) || !mesh_.is_flip_ok(e)) return false;
+  if (mesh_.status(e).deleted() || mesh_.is_boundary(e) || !is_flip_ok(mesh_, e)) return false;
   const HH h = mesh_.halfedge_handle(e, 0), o = mesh_.halfedge_handle(e, 1);
   q.a = mesh_.from_vertex_handle(h);
   q.b = mesh_.to_vertex_handle(h);

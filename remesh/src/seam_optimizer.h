@@ -7,7 +7,7 @@
 #include <cstdint>
 #include <vector>
 
-#include "openmesh_types.h"
+#include "openmesh_queries.h"
 #include "seam_optimization.h"
 
 namespace prm::remesh {
@@ -31,7 +31,10 @@ class SeamOptimizer {
 
   // triangle_validity.cpp: paper §2.4's test, kept by every pass: not zero-area, not flipped.
   bool triangle_ok(VH a, VH b, VH c, const Vec3& pa, const Vec3& pb, const Vec3& pc) const;
-  bool face_ok(FH f) const;
+  // triangle_ok of a face's vertices in OpenMesh's order, remembered per face with what it read: those
+  // vertices, their positions, source_face and on_input. The scans of remove_bad_triangles() and the final
+  // count compute it again only for the faces where any of these changed (the answer is a function of them).
+  bool face_ok(FH f);
 
   // seam_optimization.cpp: the moves several passes try.
   bool collapse_ok(HH h);
@@ -94,6 +97,16 @@ class SeamOptimizer {
   double error_flip_weight_;
   double min_norm_;
   OMesh mesh_;
+  struct FaceOkMemo {
+    bool known = false, ok = false;
+    VH v[3];
+    struct Read {
+      Vec3 position;
+      int32_t source_face;
+      bool on_input;
+    } read[3];
+  };
+  std::vector<FaceOkMemo> face_ok_memo_;
 };
 
 }  // namespace prm::remesh

@@ -1,6 +1,7 @@
 // Paper §2.4: the test every pass of the merge stage keeps: a triangle is not zero-area and not flipped (its
 // normal within the allowed angle of the input's nearby normal).
 #include <cmath>
+#include <cstring>
 
 #include "prm/point_triangle_distance.h"
 #include "prm/vec3.h"
@@ -61,10 +62,28 @@ bool SeamOptimizer::triangle_ok(VH a, VH b, VH c, const Vec3& pa, const Vec3& pb
   return true;
 }
 
-bool SeamOptimizer::face_ok(FH f) const {
+bool SeamOptimizer::face_ok(FH f) {
   auto it = mesh_.cfv_iter(f);
-  const VH a = *it, b = *++it, c = *++it;
-  return triangle_ok(a, b, c, pos(a), pos(b), pos(c));
+  const VH v[3] = {*it, *++it, *++it};
+  const size_t i = static_cast<size_t>(f.idx());
+  if (i >= face_ok_memo_.size()) face_ok_memo_.resize(mesh_.n_faces());
+  FaceOkMemo& memo = face_ok_memo_[i];
+  // Bitwise equal inputs (a moved vertex may keep its index), so that the remembered answer is the one
+  // triangle_ok would give.
+  auto same = [&](int k) {
+    const MergedVertex& now = mv(v[k]);
+    const FaceOkMemo::Read& then = memo.read[k];
+    return memo.v[k] == v[k] && std::memcmp(&now.position, &then.position, sizeof now.position) == 0 &&
+           now.source_face == then.source_face && now.on_input == then.on_input;
+  };
+  if (memo.known && same(0) && same(1) && same(2)) return memo.ok;
+  for (int k = 0; k < 3; ++k) {
+    memo.v[k] = v[k];
+    memo.read[k] = {mv(v[k]).position, mv(v[k]).source_face, mv(v[k]).on_input};
+  }
+  memo.ok = triangle_ok(v[0], v[1], v[2], pos(v[0]), pos(v[1]), pos(v[2]));
+  memo.known = true;
+  return memo.ok;
 }
 
 }  // namespace prm::remesh

@@ -19,8 +19,8 @@ bool SeamOptimizer::try_valence_flip(EH e) {
   Quad q;
   if (!flippable(e, q)) return false;
   auto dev = [](int v) { return (v - 6) * (v - 6); };
-  const int va = static_cast<int>(mesh_.valence(q.a)), vb = static_cast<int>(mesh_.valence(q.b));
-  const int vc = static_cast<int>(mesh_.valence(q.c)), vd = static_cast<int>(mesh_.valence(q.d));
+  const int va = valence(mesh_, q.a), vb = valence(mesh_, q.b);
+  const int vc = valence(mesh_, q.c), vd = valence(mesh_, q.d);
   const int before = dev(va) + dev(vb) + dev(vc) + dev(vd);
   const int after = dev(va - 1) + dev(vb - 1) + dev(vc + 1) + dev(vd + 1);
   if (after > before - 2 || va <= 3 || vb <= 3) return false;
