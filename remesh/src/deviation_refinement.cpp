@@ -401,6 +401,23 @@ bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_f
   return false;
 }
 
+// One probe point x of a triangle whose worst probe is sought: its closest point on `tree`, from the previous probe's
+// answer with the dense probes, or each query alone without them, as the first refinement did (a hint may pick
+// another face where two are as close, e.g. at an edge, and that face is the one split). Kept in (worst, worst_point)
+// if it is the farthest yet.
+void probe_worst(const AabbTree& tree, const Vec3& x, bool hinted, AabbTree::Hit& hint, AabbTree::Hit& worst,
+                 Vec3& worst_point) {
+  if (hinted) {
+    tree.closest(x, hint);
+  } else {
+    hint = tree.closest(x);
+  }
+  if (hint.found() && (!worst.found() || hint.distance2 > worst.distance2)) {
+    worst = hint;
+    worst_point = x;
+  }
+}
+
 }  // namespace
 
 DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, const AabbTree& input_tree,
@@ -449,17 +466,7 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
         const Vec3 &a = input.positions[t[0]], &b = input.positions[t[1]], &c = input.positions[t[2]];
         AabbTree::Hit hint;
         for_each_grid_point(a, b, c, grid_divisions(a, b, c, options.max_deviation), [&](const Vec3& x) {
-          // Without the notch steps, each query alone, as the first refinement did (a hint may pick another face
-          // where two are as close, e.g. at an edge, and that face is the one split).
-          if (options.dense_probes) {
-            tree.closest(x, hint);
-          } else {
-            hint = tree.closest(x);
-          }
-          if (hint.found() && (!face_hit[i].found() || hint.distance2 > face_hit[i].distance2)) {
-            face_hit[i] = hint;
-            face_point[i] = x;
-          }
+          probe_worst(tree, x, options.dense_probes, hint, face_hit[i], face_point[i]);
         });
       });
       for (size_t i = 0; i < near_far.size(); ++i)
@@ -491,15 +498,7 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
       const Vec3 &a = m.positions[t[0]], &b = m.positions[t[1]], &c = m.positions[t[2]];
       AabbTree::Hit hint;
       const auto visit = [&](const Vec3& x) {
-        if (options.dense_probes) {
-          input_tree.closest(x, hint);
-        } else {
-          hint = input_tree.closest(x);
-        }
-        if (hint.found() && (!probe_hit[f].found() || hint.distance2 > probe_hit[f].distance2)) {
-          probe_hit[f] = hint;
-          probe_point[f] = x;
-        }
+        probe_worst(input_tree, x, options.dense_probes, hint, probe_hit[f], probe_point[f]);
       };
       for_each_probe(a, b, c, options.thin_sheets && options.dense_probes, options.max_deviation, visit);
     });
