@@ -136,7 +136,7 @@ bool SpiraleReversi::apply_handle(uint32_t t, const HandleEvent& event, uint32_t
   set_corner(b, rec_[jb]);
   set_corner(a, rec_[corner_next(pc)]);
   merge(r1, rq);
-  set_corner_root(v, r1, r1);
+  set_corner_root(v, r1);
   stack_.back() = t;
   return true;
 }
