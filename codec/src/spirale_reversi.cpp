@@ -94,6 +94,10 @@ uint32_t SpiraleReversi::seam_walk(uint32_t c0) {
 // Rotates about the vertex of c across glued edges and sets odd_near of the two other corners' records of every
 // triangle met. The rotation meets every corner of r only if it closes after exactly count(r) triangles
 // (corners of one record are joined only through glued edges, §6.4.2); otherwise tracking stops.
+// Only next(k)'s record is marked in each triangle: the step crosses the edge prev(k) -> k into the triangle of d,
+// whose next(next(d)) = prev(d) has prev(k)'s record (a glued edge joins corners of the same records at both ends,
+// §6.4.2), so over a closed rotation the records of the prev corners are those of the next corners; a rotation that
+// does not close stops the tracking, and its marks are never read.
 void SpiraleReversi::note_odd(uint32_t c, uint32_t r) {
   const uint32_t count = records_[r].count;
   uint32_t k = c, n = 0;
@@ -104,7 +108,6 @@ void SpiraleReversi::note_odd(uint32_t c, uint32_t r) {
       return;
     }
     records_[find(rec_[corner_next(k)])].odd_near = 1;
-    records_[find(rec_[corner_prev(k)])].odd_near = 1;
     ++n;
     k = corner_next(static_cast<uint32_t>(d));
   } while (k != c);
