@@ -38,12 +38,19 @@ bool SpiraleReversi::fail(const char* message) {
 // exceeds the number of corners, which only a corrupt state can cause).
 // Each step moves c to next(d), d = opp[next(c)]: the rotation is back at c when d = prev(c), and the next step's
 // corner next(next(d)) is prev(d).
+// The walk is a function of k alone: past as many steps as there are corners it repeats itself for ever, so any bound
+// above that gives the same result. Two steps per bound test.
 int64_t SpiraleReversi::open_edge_into(uint32_t c) {
   const int32_t stop = static_cast<int32_t>(corner_prev(c));
-  const uint64_t bound = 3 * uint64_t{decoded_} + 3;
+  const int32_t* opp = opp_.all().data();
+  const size_t first = opp_.first();
   uint32_t k = corner_next(c);
-  for (uint64_t steps = 0; steps <= bound; ++steps) {
-    const int32_t d = opp_[k];
+  for (uint64_t steps = 0; steps <= 3 * uint64_t{decoded_} + 3; steps += 2) {
+    int32_t d = opp[k - first];
+    if (d < 0) return k;
+    if (d == stop) return -1;
+    k = corner_prev(static_cast<uint32_t>(d));
+    d = opp[k - first];
     if (d < 0) return k;
     if (d == stop) return -1;
     k = corner_prev(static_cast<uint32_t>(d));
