@@ -38,12 +38,19 @@ bool SpiraleReversi::fail(const char* message) {
 // exceeds the number of corners, which only a corrupt state can cause).
 // Each step moves c to next(d), d = opp[next(c)]: the rotation is back at c when d = prev(c), and the next step's
 // corner next(next(d)) is prev(d).
+// The walk is a function of k alone: past as many steps as there are corners it repeats itself for ever, so any bound
+// above that gives the same result. Two steps per bound test.
 int64_t SpiraleReversi::open_edge_into(uint32_t c) {
   const int32_t stop = static_cast<int32_t>(corner_prev(c));
-  const uint64_t bound = 3 * uint64_t{decoded_} + 3;
+  const int32_t* opp = opp_.all().data();
+  const size_t first = opp_.first();
   uint32_t k = corner_next(c);
-  for (uint64_t steps = 0; steps <= bound; ++steps) {
-    const int32_t d = opp_[k];
+  for (uint64_t steps = 0; steps <= 3 * uint64_t{decoded_} + 3; steps += 2) {
+    int32_t d = opp[k - first];
+    if (d < 0) return k;
+    if (d == stop) return -1;
+    k = corner_prev(static_cast<uint32_t>(d));
+    d = opp[k - first];
     if (d < 0) return k;
     if (d == stop) return -1;
     k = corner_prev(static_cast<uint32_t>(d));
@@ -94,6 +101,10 @@ uint32_t SpiraleReversi::seam_walk(uint32_t c0) {
 // Rotates about the vertex of c across glued edges and sets odd_near of the two other corners' records of every
 // triangle met. The rotation meets every corner of r only if it closes after exactly count(r) triangles
 // (corners of one record are joined only through glued edges, §6.4.2); otherwise tracking stops.
+// Only next(k)'s record is marked in each triangle: the step crosses the edge prev(k) -> k into the triangle of d,
+// whose next(next(d)) = prev(d) has prev(k)'s record (a glued edge joins corners of the same records at both ends,
+// §6.4.2), so over a closed rotation the records of the prev corners are those of the next corners; a rotation that
+// does not close stops the tracking, and its marks are never read.
 void SpiraleReversi::note_odd(uint32_t c, uint32_t r) {
   const uint32_t count = records_[r].count;
   uint32_t k = c, n = 0;
@@ -104,7 +115,6 @@ void SpiraleReversi::note_odd(uint32_t c, uint32_t r) {
       return;
     }
     records_[find(rec_[corner_next(k)])].odd_near = 1;
-    records_[find(rec_[corner_prev(k)])].odd_near = 1;
     ++n;
     k = corner_next(static_cast<uint32_t>(d));
   } while (k != c);
@@ -136,7 +146,7 @@ bool SpiraleReversi::apply_handle(uint32_t t, const HandleEvent& event, uint32_t
   set_corner(b, rec_[jb]);
   set_corner(a, rec_[corner_next(pc)]);
   merge(r1, rq);
-  set_corner_root(v, r1, r1);
+  set_corner_root(v, r1);
   stack_.back() = t;
   return true;
 }

@@ -94,10 +94,11 @@ class SpiraleReversi {
     records_.push_back({r, 1, -1, 0, 0});
     rec_[c] = r;
   }
-  PRM_WASM_INLINE void set_corner(uint32_t c, uint32_t record) { set_corner_root(c, record, find(record)); }
-  // set_corner when the caller knows find(record) = r.
-  PRM_WASM_INLINE void set_corner_root(uint32_t c, uint32_t record, uint32_t r) {
-    rec_[c] = record;
+  PRM_WASM_INLINE void set_corner(uint32_t c, uint32_t record) { set_corner_root(c, find(record)); }
+  // set_corner of a record whose root is r. The corner is given r itself: the same vertex (and so the same ids,
+  // counts and Seam), and the later finds from it start at a root or near one.
+  PRM_WASM_INLINE void set_corner_root(uint32_t c, uint32_t r) {
+    rec_[c] = r;
     Record& x = records_[r];
     ++x.count;
     if (x.id >= 0) {
@@ -207,7 +208,7 @@ PRM_ALWAYS_INLINE bool SpiraleReversi::apply(uint32_t t, uint8_t symbol) {
       const int64_t e = open_edge_into(ja);
       if (e < 0 || static_cast<uint32_t>(e) == jg) return fail("C whose tip has no open edge to zip");
       glue(a, jg);
-      set_corner_root(v, rec_[ja], tip);  // tip stays the root: nothing below merges records
+      set_corner_root(v, tip);  // tip stays the root: nothing below merges records
       set_corner(b, rec_[jb]);
       glue(b, static_cast<uint32_t>(e));
       set_corner(a, rec_[corner_next(static_cast<uint32_t>(e))]);
@@ -240,7 +241,7 @@ PRM_ALWAYS_INLINE bool SpiraleReversi::apply(uint32_t t, uint8_t symbol) {
       set_corner(b, rec_[jb]);
       set_corner(a, rec_[ka]);
       merge(r1, r2);  // §6.4.5 the two records of the tip become one
-      set_corner_root(v, r1, r1);
+      set_corner_root(v, r1);
       stack_.pop_back();
       stack_.back() = t;
       return true;
