@@ -355,9 +355,11 @@ EffortPlan effort_plan(int effort) {
   // better one (defer_heights): effort 5's streams on the paper's four models (the venus +0.06% against effort 9,
   // where effort 3 is +7.8%) for 3-29% less CPU than effort 5 and 1-4.6 s more than effort 3 (bench/README.md
   // "pack effort", sixth round).
-  // Effort 3 defers the heights too, so that its second step (coarser_step_from_grid, on a grid of many quantization
-  // steps) costs one remesh and one rounded encode; with one step its streams are effort 3's before (bench/README.md
-  // "pack effort", eighth round).
+  // Effort 3 defers the heights too (with one step, the same streams as before) and searches the next coarser step
+  // instead of the predicted one when its first grid meets the target and its search would go on to a grid of 15
+  // quantization steps or more (coarser_step_from_grid): on the paper's models only the venus, whose stream went
+  // from +7.8% to +0.06% against effort 9 for about the same CPU; on a smooth sphere it cost 1.5-5% at three of four
+  // targets (bench/README.md "pack effort", eighth round).
   switch (effort) {
     case 0: p.steps = 1; p.search_samples_per_face = 2; p.lambda_rounds = 1; p.grid_tolerance = 0.15; p.accept_error = 0; break;
     case 1: p.steps = 1; p.search_samples_per_face = 2; p.lambda_rounds = 3; p.grid_tolerance = 0.1; p.accept_error = 0.85; break;
