@@ -1,6 +1,8 @@
 #include "prm/pipeline/pack.h"
 
 #include <chrono>
+#include <cstdint>
+#include <functional>
 #include <cmath>
 #include <stdexcept>
 #include <algorithm>
@@ -91,9 +93,12 @@ struct Remeshed {
   double sparse_bias = 1;
 };
 
+using StopSearch = std::function<bool(int64_t grid, bool met, int64_t next)>;
+
 // One bit depth and step scale: repair (done by the caller), remesh, encode with rounded heights.
+// stop_search: remesh::RemeshOptions::stop_search.
 Remeshed remesh_at(const SearchContext& ctx, const PackOptions& options, int bits, double step_scale,
-                   double initial_grid) {
+                   double initial_grid, const StopSearch& stop_search = {}) {
   const Mesh& source = ctx.source;
   const MetroReference& reference = ctx.search;
   PackResult out;
@@ -108,6 +113,7 @@ Remeshed remesh_at(const SearchContext& ctx, const PackOptions& options, int bit
   ro.next_exponent = ctx.plan.next_exponent;
   ro.aim = ctx.plan.aim;
   ro.round_to_nearest = ctx.plan.round_to_nearest;
+  ro.stop_search = stop_search;
   ro.bits = bits;
   ro.step_scale = step_scale;
   ro.reliefs.tau = options.tau;
@@ -349,11 +355,16 @@ EffortPlan effort_plan(int effort) {
   // better one (defer_heights): effort 5's streams on the paper's four models (the venus +0.06% against effort 9,
   // where effort 3 is +7.8%) for 3-29% less CPU than effort 5 and 1-4.6 s more than effort 3 (bench/README.md
   // "pack effort", sixth round).
+  // Effort 3 defers the heights too (with one step, the same streams as before) and searches the next coarser step
+  // instead of the predicted one when its first grid meets the target and its search would go on to a grid of 15
+  // quantization steps or more (coarser_step_from_grid): on the paper's models only the venus, whose stream went
+  // from +7.8% to +0.06% against effort 9 for about the same CPU; on a smooth sphere it cost 1.5-5% at three of four
+  // targets (bench/README.md "pack effort", eighth round).
   switch (effort) {
     case 0: p.steps = 1; p.search_samples_per_face = 2; p.lambda_rounds = 1; p.grid_tolerance = 0.15; p.accept_error = 0; break;
     case 1: p.steps = 1; p.search_samples_per_face = 2; p.lambda_rounds = 3; p.grid_tolerance = 0.1; p.accept_error = 0.85; break;
     case 2: p.steps = 1; p.search_samples_per_face = 4; p.lambda_rounds = 4; p.grid_tolerance = 0.06; p.accept_error = 0.9; break;
-    case 3: p.steps = 1; p.search_samples_per_face = 4; p.lambda_rounds = 4; break;
+    case 3: p.steps = 1; p.defer_heights = true; p.coarser_step_from_grid = 15; p.search_samples_per_face = 4; p.lambda_rounds = 4; break;
     case 4: p.steps = 2; p.defer_heights = true; p.search_samples_per_face = 4; break;
     case 5: p.steps = 2; p.search_samples_per_face = 4; break;
     case 6: p.steps = 3; p.search_samples_per_face = 4; break;
@@ -503,13 +514,15 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
     // EffortPlan::defer_heights: the attempts are compared by their streams with rounded heights; the best one's
     // heights are chosen (finish_at) once the search is over.
     std::unique_ptr<Remeshed> best_remeshed;
-    auto attempt = [&](int bits, double scale) {
+    double best_initial_grid = 0;  // the grid the best attempt's search started from
+    auto attempt = [&](int bits, double scale, const StopSearch& stop_search = {}) {
+      const double initial_grid = grid;
       PackResult r;
       std::unique_ptr<Remeshed> remeshed;
       try {
         if (plan.defer_heights) {
           ProgressJob::attempt(++attempts);
-          remeshed = std::make_unique<Remeshed>(remesh_at(ctx, options, bits, scale, grid));
+          remeshed = std::make_unique<Remeshed>(remesh_at(ctx, options, bits, scale, grid, stop_search));
           rounds += remeshed->out.remesh.search.size();
           // The rounded stream must keep every triangle's area (finish_at would refuse the attempt).
           const auto decoded = codec::decode(remeshed->out.stream.data(), remeshed->out.stream.size());
@@ -534,6 +547,7 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
       out = std::move(r);
       out.tried = std::move(tried);
       best_remeshed = std::move(remeshed);
+      best_initial_grid = initial_grid;
       have = true;
       ProgressJob::best_bytes(out.stream.size());
       return Outcome::smaller;
@@ -570,10 +584,39 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
       };
       int p = best_p;
       grid = kGridPerTargetError * predicted_error * reference.diagonal();
+      // EffortPlan::coarser_step_from_grid: the first step's search stops after its first grid when that grid meets
+      // the target and the next one would be of that many quantization steps or more; the next coarser step is
+      // tried instead, from that next grid, and the first step's search is resumed only when the coarser step
+      // gives no smaller stream.
+      int64_t coarser_from = 0;  // the grid (quantization steps of the first step) the search would have tried next
+      StopSearch stop_first;
+      if (plan.coarser_step_from_grid > 0 && plan.steps == 1 && plan.defer_heights)
+        stop_first = [&, first = true](int64_t, bool met, int64_t next) mutable {
+          const bool stop = first && met && next >= plan.coarser_step_from_grid;
+          first = false;
+          if (stop) coarser_from = next;
+          return stop;
+        };
       for (int n = 0; n < plan.steps && p != INT32_MIN; ++n) {
         tried_p.push_back(p);
         const Step st = step_at(p);
-        const Outcome o = attempt(st.bits, st.scale);
+        const double start_grid = grid;
+        const Outcome o = attempt(st.bits, st.scale, n == 0 ? stop_first : StopSearch{});
+        if (coarser_from > 0 && o == Outcome::smaller && untried(p - 1)) {
+          const int first_p = p;
+          grid = static_cast<double>(coarser_from) * out.remesh.prm.frame.step;
+          coarser_from = 0;
+          tried_p.push_back(p - 1);
+          const Step coarser = step_at(p - 1);
+          if (attempt(coarser.bits, coarser.scale) == Outcome::smaller) {
+            best_p = p - 1;
+            break;
+          }
+          grid = start_grid;  // the first step's search again, as it would have gone on
+          attempt(st.bits, st.scale);
+          best_p = first_p;
+          break;
+        }
         if (o == Outcome::smaller) best_p = p;
         if (o == Outcome::unreachable && !have) {
           // The target needs a finer step: down by an octave at a time.
@@ -604,7 +647,8 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
       const auto t1 = std::chrono::steady_clock::now();
       out = finish_at(ctx, options, std::move(*best_remeshed), &measured);
       if (!measured) {
-        out = pack_at(full_ctx, options, bits, scale, best_grid);
+        // One step (as pack_one would): again from the grid its search started from; several: from the best grid.
+        out = pack_at(full_ctx, options, bits, scale, plan.steps == 1 ? best_initial_grid : best_grid);
         rounds += out.remesh.search.size();
       }
       seconds += seconds_since(t1);

@@ -3,6 +3,7 @@
 // bench/README.md "pack effort", never here.)
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <stdexcept>
 #include <string>
@@ -11,6 +12,7 @@
 #include "prm/mesh_io.h"
 #include "prm/pipeline/codec_bridge.h"
 #include "prm/pipeline/pack.h"
+#include "test_meshes.h"
 
 namespace {
 
@@ -32,7 +34,40 @@ TEST(PackEffort, LevelsOutsideTheRangeAreRefused) {
   const prm::pipeline::EffortPlan four = prm::pipeline::effort_plan(4);
   EXPECT_TRUE(four.defer_heights);
   EXPECT_EQ(four.steps, 2);
-  EXPECT_FALSE(prm::pipeline::effort_plan(3).defer_heights);
+  EXPECT_EQ(four.coarser_step_from_grid, 0);
+  // Effort 3 defers the heights too and tries the next coarser step instead when its first grid meets the target
+  // and the search would go on to one of 15 quantization steps or more.
+  const prm::pipeline::EffortPlan three = prm::pipeline::effort_plan(3);
+  EXPECT_TRUE(three.defer_heights);
+  EXPECT_EQ(three.steps, 1);
+  EXPECT_EQ(three.coarser_step_from_grid, 15);
+}
+
+// EffortPlan::coarser_step_from_grid: on a smooth sphere the default's first grid meets 5e-4 with room to spare and
+// its search would go on to a grid of more than 15 steps (26 at 9 bits), so effort 3 searches the next coarser step
+// instead. Both attempts are listed; the kept one is an eighth of an octave coarser and smaller, and meets the target.
+TEST(PackEffort, CoarserStepWhenTheGridIsOfManySteps) {
+  const prm::Mesh input = prm::test::icosphere(5);
+  const double target = 5e-4;
+  PackOptions o;
+  o.target_error = target;
+  o.effort = 3;
+  o.mode = prm::pipeline::PackMode::prm;
+  const prm::pipeline::PackResult r = prm::pipeline::pack(input, o);
+  ASSERT_EQ(r.tried.size(), 2u);
+  auto step = [](const prm::pipeline::PackResult::Trial& t) { return t.step_scale * std::exp2(-t.bits); };
+  EXPECT_NEAR(step(r.tried[1]) / step(r.tried[0]), std::exp2(0.125), 1e-9);
+  EXPECT_EQ(r.tried[1].bits, r.bits);
+  EXPECT_EQ(r.tried[1].step_scale, r.step_scale);
+  EXPECT_EQ(r.tried[1].bytes, r.stream.size());
+  EXPECT_LT(r.tried[1].bytes, r.tried[0].bytes);
+  const auto decoded = prm::codec::decode(r.stream.data(), r.stream.size());
+  ASSERT_TRUE(decoded.ok()) << decoded.status.message;
+  const prm::DistanceReport d = prm::metro_distance(input, prm::pipeline::to_mesh(decoded.value));
+  EXPECT_LE(d.rel(d.rms), target);
+  // Effort 2 (no deferred heights) keeps the first step.
+  o.effort = 2;
+  EXPECT_EQ(prm::pipeline::pack(input, o).tried.size(), 1u);
 }
 
 // Each level below the exhaustive one (GridFromTargetError covers that) on a small real mesh: the decoded stream

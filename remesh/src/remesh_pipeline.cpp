@@ -209,6 +209,7 @@ RemeshResult remesh(const Mesh& input, const RemeshOptions& options, const Error
     if (best_grid > 0 && smallest_failing != INT64_MAX && (g <= best_grid || g >= smallest_failing))
       g = (best_grid + smallest_failing) / 2;
     if (g == grid || g < finest || g > coarsest) break;
+    if (options.stop_search && options.stop_search(grid, e <= target, g)) break;
     grid = g;
   }
   progress.finish();

@@ -67,5 +67,42 @@ TEST(GridSearch, MeasuresTheNextGridWhenItMightMeetTheTarget) {
   EXPECT_NE(std::find(grids.begin(), grids.end(), kAnswer + 1), grids.end());
 }
 
+TEST(GridSearch, StopSearchEndsAtTheGridMeasuredWithTheNextOneItWouldTry) {
+  const Mesh input = read_mesh(std::string(PRM_SHARED_MESHES) + "/spot.obj");
+  const double target = 1.01 * model_error(kAnswer);  // the first grid (12) meets it; the search goes coarser
+  int64_t chosen = 0;
+  const std::vector<int64_t> unstopped = searched_grids(input, predicted(), target, &chosen);
+  ASSERT_GE(unstopped.size(), 2u);
+  // Asked once per move, with the grid just measured, whether it met the target, and the grid measured next.
+  struct Call {
+    int64_t grid, next;
+    bool met;
+  };
+  std::vector<Call> calls;
+  RemeshOptions o = predicted();
+  o.stop_search = [&](int64_t grid, bool met, int64_t next) {
+    calls.push_back({grid, next, met});
+    return false;
+  };
+  EXPECT_EQ(searched_grids(input, o, target, &chosen), unstopped);
+  ASSERT_EQ(calls.size(), unstopped.size() - 1);
+  for (size_t k = 0; k < calls.size(); ++k) {
+    EXPECT_EQ(calls[k].grid, unstopped[k]);
+    EXPECT_EQ(calls[k].next, unstopped[k + 1]);
+    EXPECT_EQ(calls[k].met, model_error(unstopped[k]) <= target);
+  }
+  // true: the search ends there, with the grid that met the target.
+  calls.clear();
+  o.stop_search = [&](int64_t grid, bool met, int64_t next) {
+    calls.push_back({grid, next, met});
+    return true;
+  };
+  EXPECT_EQ(searched_grids(input, o, target, &chosen), (std::vector<int64_t>{kStart}));
+  EXPECT_EQ(chosen, kStart);
+  ASSERT_EQ(calls.size(), 1u);
+  EXPECT_TRUE(calls[0].met);
+  EXPECT_EQ(calls[0].next, unstopped[1]);
+}
+
 }  // namespace
 }  // namespace prm::remesh

@@ -55,6 +55,10 @@ struct RemeshOptions {
   // grid just below the target's, rarely over it, at the cost of more steps) or to the nearest (true).
   double aim = 0.97;
   bool round_to_nearest = false;
+  // With target_error: asked before the search moves from a grid to the next one (grid: the one just measured, met:
+  // whether it met the target, next: the grid the search would measure next); true ends the search there, with the
+  // coarsest grid that met the target so far (TargetNotReached when none did). Empty: never.
+  std::function<bool(int64_t grid, bool met, int64_t next)> stop_search;
   // The relief layout of the input (build_reliefs(input, reliefs)), when the caller built it already: a search over
   // several bit depths or step scales builds it once. Null: built here.
   const ReliefLayout* layout = nullptr;
