@@ -35,6 +35,11 @@ constexpr double kRoundGain = 0.98;
 // The points of a mesh triangle the first refinement measured against the input (thin_sheets false): its centroid
 // and its edges' midpoints.
 constexpr double kProbes[4][3] = {{1.0 / 3, 1.0 / 3, 1.0 / 3}, {0.5, 0.5, 0}, {0, 0.5, 0.5}, {0.5, 0, 0.5}};
+// place_by_descent: rounds of the pattern search at each step size (the first step the deviation's length, halved
+// kDescentHalvings times), and the share of its start's deviation the place found must stray less than.
+constexpr int kDescentRounds = 4;
+constexpr int kDescentHalvings = 3;
+constexpr double kDescentGain = 0.98;
 // Steps of the walk along a mesh triangle's normal into a notch it bridges (normal_reach).
 constexpr int kReachSteps = 4;
 
@@ -168,6 +173,36 @@ struct StrayCheck {
   }
 };
 
+// Vertex nv's place near `start` where cost() (the worst squared deviation of its triangles; infinite when one
+// turns over) is least: a pattern search along `directions` (both ways), `step` first, then halved kDescentHalvings
+// times. True (nv there) when that place's cost is within limit2 (the squared bound: a place that is only better
+// than before was tried and made the horse worse, 9.6x) and below kDescentGain x the cost at start (for a new
+// vertex the new triangles lie in the old ones' plane there, so that is the old deviation seen by the new probes).
+template <class Cost>
+bool place_by_descent(Mesh& m, uint32_t nv, const Vec3& start, double step, double limit2, Cost&& cost,
+                      const std::vector<Vec3>& directions = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}) {
+  m.positions[nv] = start;
+  const double at_start = cost();
+  if (!std::isfinite(at_start) || !(step > 0)) return false;
+  Vec3 x = start;
+  double cx = at_start;
+  for (int level = 0; level <= kDescentHalvings; ++level, step *= 0.5) {
+    bool improved = true;
+    for (int round = 0; improved && round < kDescentRounds; ++round) {
+      improved = false;
+      for (const Vec3& dir : directions)
+        for (double sign : {-1.0, 1.0}) {
+          const Vec3 y = x + (sign * step) * dir;
+          m.positions[nv] = y;
+          const double cy = cost();
+          if (cy < cx) x = y, cx = cy, improved = true;
+        }
+    }
+  }
+  m.positions[nv] = x;
+  return cx < kDescentGain * at_start && cx <= limit2;
+}
+
 // Splits face f in three at the new vertex nv, placed at `to` or, where that turns a triangle over, part of the way
 // there from `from` (kShares). False (f unchanged) when every place turns one over or fails the check.
 bool split_in_three(Mesh& m, std::vector<uint8_t>& touched, const StrayCheck& check, uint32_t f, uint32_t nv,
@@ -193,7 +228,7 @@ bool split_in_three(Mesh& m, std::vector<uint8_t>& touched, const StrayCheck& ch
 // A straying mesh point (strays_from_input) with `reach`: where the input's closest point would turn a triangle over,
 // the new vertex goes along the normal (normal_reach) instead.
 bool insert(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std::vector<uint8_t>& touched,
-            const AabbTree& input_tree, const StrayCheck& check, bool reach, const Deviation& d) {
+            const AabbTree& input_tree, const StrayCheck& check, bool reach, bool descent, const Deviation& d) {
   const uint32_t f = d.face;
   const Tri t = m.triangles[f];
   const Vec3 old_normal = face_normal(m, t);
@@ -250,6 +285,64 @@ bool insert(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std
         touched.resize(m.triangles.size(), 1);
         return true;
       }
+  }
+  // descent_placement: no fixed place served; the place near the split point whose new triangles stray least (and,
+  // for a missed input point, lie nearest it), when that is clearly less than at the split point.
+  if (descent && check.input_tree != nullptr) {
+    const double step = std::sqrt(d.distance2);
+    const auto cost = [&](const std::vector<Tri>& tris, const std::vector<std::pair<Vec3, const std::vector<Tri>*>>&
+                                                            normals) {
+      for (const auto& [normal, group] : normals)
+        if (!faces_agree(m, normal, *group)) return std::numeric_limits<double>::infinity();
+      // The probes leave the vertices out: the new vertex's own distance counts too.
+      double worst = std::max(probe_deviation2(m, tris, *check.input_tree, check.bound, check.dense),
+                              check.input_tree->closest(m.positions[nv]).distance2);
+      if (!strays_from_input(d)) {
+        double nearest = std::numeric_limits<double>::infinity();
+        for (const Tri& w : tris)
+          nearest = std::min(nearest, point_triangle_distance2(d.wanted, m.positions[w[0]], m.positions[w[1]],
+                                                               m.positions[w[2]]));
+        worst = std::max(worst, nearest);
+      }
+      return worst;
+    };
+    const size_t k = static_cast<size_t>(corners[0]);
+    if (bc[k] > kEdgeBarycentric) {
+      const std::vector<Tri> tris = {{t[0], t[1], nv}, {t[1], t[2], nv}, {t[2], t[0], nv}};
+      if (place_by_descent(m, nv, d.at, step, check.bound * check.bound,
+                           [&] { return cost(tris, {{old_normal, &tris}}); })) {
+        m.triangles[f] = tris[0];
+        m.triangles.push_back(tris[1]);
+        m.triangles.push_back(tris[2]);
+        touched[f] = 1;
+        touched.resize(m.triangles.size(), 1);
+        return true;
+      }
+    } else {
+      const uint32_t a = t[(k + 1) % 3], b = t[(k + 2) % 3], c = t[k];
+      const int64_t g = other_face(m, vertex_faces, a, b, f);
+      if (g >= 0 && !touched[static_cast<size_t>(g)]) {
+        const Tri u = m.triangles[static_cast<size_t>(g)];
+        uint32_t e = u[0];
+        for (uint32_t x : u)
+          if (x != a && x != b) e = x;
+        const std::vector<Tri> mine = {{a, nv, c}, {nv, b, c}}, theirs = {{b, nv, e}, {nv, a, e}};
+        const std::vector<Tri> all = {mine[0], mine[1], theirs[0], theirs[1]};
+        const Vec3 pa = m.positions[a], pb = m.positions[b], normal_u = face_normal(m, u);
+        const double s = std::clamp(dot(d.at - pa, pb - pa) / std::max(norm2(pb - pa), 1e-300), 0.1, 0.9);
+        if (place_by_descent(m, nv, pa + s * (pb - pa), step, check.bound * check.bound,
+                             [&] { return cost(all, {{old_normal, &mine}, {normal_u, &theirs}}); })) {
+          m.triangles[f] = mine[0];
+          m.triangles.push_back(mine[1]);
+          m.triangles[static_cast<size_t>(g)] = theirs[0];
+          m.triangles.push_back(theirs[1]);
+          touched[f] = 1;
+          touched[static_cast<size_t>(g)] = 1;
+          touched.resize(m.triangles.size(), 1);
+          return true;
+        }
+      }
+    }
   }
   m.positions.pop_back();
   return false;
@@ -401,6 +494,39 @@ bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_f
   return false;
 }
 
+// descent_placement for a mesh vertex v that strays (pr>in) and that move_rim_vertex left: the place near it where
+// the worst of its own distance to the input and its faces' probe points is least (a lattice vertex along its
+// relief's axis only: it keeps its lattice place), when that is within the bound and below kDescentGain x where it
+// is (h22max5: the horse's hoof, a lattice vertex on an 82-degree crease whose axis move towards the input's
+// closest point turned a face over).
+bool descend_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, const PrmMesh& prm,
+                    const AabbTree& input_tree, const DeviationRefinementOptions& options,
+                    std::vector<uint8_t>& touched, const Deviation& d) {
+  const uint32_t v = d.vertex;
+  const std::vector<uint32_t>& faces = vertex_faces[v];
+  if (std::any_of(faces.begin(), faces.end(), [&](uint32_t f) { return touched[f] != 0; })) return false;
+  const std::vector<Tri> tris = triangles_of(m, faces);
+  std::vector<Vec3> normals;
+  for (const Tri& t : tris) normals.push_back(face_normal(m, t));
+  const auto cost = [&] {
+    for (size_t k = 0; k < tris.size(); ++k)
+      if (!faces_agree(m, normals[k], {tris[k]})) return std::numeric_limits<double>::infinity();
+    return std::max(probe_deviation2(m, tris, input_tree, options.max_deviation, options.dense_probes),
+                    input_tree.closest(m.positions[v]).distance2);
+  };
+  const bool lattice = v < prm.vertex_relief.size() && prm.vertex_relief[v] >= 0;
+  std::vector<Vec3> directions = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  if (lattice) directions = {axis_vector(prm.relief_axis[static_cast<size_t>(prm.vertex_relief[v])])};
+  const Vec3 from = m.positions[v];
+  if (place_by_descent(m, v, from, std::sqrt(d.distance2), options.max_deviation * options.max_deviation, cost,
+                       directions)) {
+    for (uint32_t f : faces) touched[f] = 1;
+    return true;
+  }
+  m.positions[v] = from;
+  return false;
+}
+
 // One probe point x of a triangle whose worst probe is sought: its closest point on `tree`, from the previous probe's
 // answer with the dense probes, or each query alone without them, as the first refinement did (a hint may pick
 // another face where two are as close, e.g. at an edge, and that face is the one split). Kept in (worst, worst_point)
@@ -528,6 +654,12 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
         ++inserted_this_round;
         continue;
       }
+      if (d.input_vertex == kMeshVertex && options.thin_sheets && options.descent_placement &&
+          descend_vertex(m, vertex_faces, prm, input_tree, options, touched, d)) {
+        ++st.moved;
+        ++inserted_this_round;
+        continue;
+      }
       if (d.input_vertex == kMeshVertex) continue;  // moved or left
       if (options.thin_sheets && d.input_vertex == kMeshPoint &&
           flip_straying_edge(m, vertex_faces, input_tree, options.max_deviation, options.dense_probes, touched, d)) {
@@ -535,7 +667,8 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
         ++inserted_this_round;
         continue;
       }
-      if (insert(m, vertex_faces, touched, input_tree, check, options.thin_sheets && options.normal_reach, d) ||
+      if (insert(m, vertex_faces, touched, input_tree, check, options.thin_sheets && options.normal_reach,
+                 options.thin_sheets && options.descent_placement, d) ||
           (options.thin_sheets && !strays_from_input(d) && insert_on_facing_face(m, vertex_faces, touched, check, d))) {
         ++st.inserted;
         ++inserted_this_round;

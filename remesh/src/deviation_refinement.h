@@ -42,6 +42,11 @@ struct DeviationRefinementOptions {
   // A lattice vertex of a face that misses an input point moves along its axis towards it before a vertex is
   // inserted there (needs lattice_moves; h22thin3: fewer new vertices, bench/README.md "Worst-case error").
   bool lattice_reach = true;
+  // Where every fixed place of a new vertex (the wanted point, along the normal, part of the way) turns a triangle
+  // over or strays further, a pattern search near the split point for the place whose triangles stray least
+  // (h22max5: the horse's ear, where the input's closest point lies on one face of a thin sheet and a vertex moved
+  // towards it pushes the triangles off the other face). Needs stray_check.
+  bool descent_placement = true;
 };
 
 struct DeviationRefinementStats {

@@ -214,7 +214,8 @@ PrmMesh resample_and_merge(const LayoutInput& layout, const ResampleOptions& opt
     DeviationRefinementOptions dro;
     dro.max_deviation = options.max_deviation;
     dro.thin_sheets = options.refine_thin_sheets;
-    dro.lattice_moves = dro.lattice_reach = dro.dense_probes = dro.normal_reach = dro.stray_check = options.refine_notches;
+    dro.lattice_moves = dro.lattice_reach = dro.dense_probes = dro.normal_reach = dro.stray_check =
+        dro.descent_placement = options.refine_notches;
     const DeviationRefinementStats ds = refine_deviations(prm, input, tree, dro);
     st.deviation_inserts = ds.inserted;
     st.deviation_refused = ds.refused;
