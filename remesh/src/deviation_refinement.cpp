@@ -547,7 +547,8 @@ void probe_worst(const AabbTree& tree, const Vec3& x, bool hinted, AabbTree::Hit
 }  // namespace
 
 DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, const AabbTree& input_tree,
-                                           const DeviationRefinementOptions& options) {
+                                           const DeviationRefinementOptions& options,
+                                           std::vector<double>* face_deviation2) {
   DeviationRefinementStats st;
   if (!(options.max_deviation > 0) || input.positions.empty()) return st;
   Mesh& m = prm.mesh;
@@ -564,7 +565,7 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
   // to round: only the faces a round changed (`stale`, every face at first) and their vertices are measured again,
   // which gives the same figures as measuring all (h22max5: the probes of every face in every round were most of
   // the refinement's CPU time).
-  std::vector<AabbTree::Hit> probe_hit, vertex_hits;
+  std::vector<AabbTree::Hit> probe_hit, vertex_hits, hits;
   std::vector<Vec3> probe_point;
   std::vector<uint8_t> stale;
   while (st.rounds < kMaxRounds && st.inserted < budget) {
@@ -574,11 +575,17 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
     for (uint32_t f = 0; f < m.triangles.size(); ++f)
       if (stale[f])
         for (uint32_t v : m.triangles[f]) stale_vertex[v] = 1;
-    // in>pr: the input vertices far from the mesh.
+    // in>pr: the input vertices far from the mesh. From the second round only those farther than kFaceProbeShare x
+    // the bound or closest to a face the last round changed are measured again: the others' distance can only have
+    // shrunk (the faces that did not change are where they were), and is read only against that share and the
+    // bound, so the figures are those of measuring all.
     const AabbTree tree(m);
-    std::vector<AabbTree::Hit> hits(input.positions.size());
+    const double share2 = kFaceProbeShare * kFaceProbeShare * bound2;
+    hits.resize(input.positions.size());
     tbb::parallel_for(size_t{0}, input.positions.size(), [&](size_t v) {
-      if (used[v]) hits[v] = tree.closest(input.positions[v]);
+      if (!used[v]) return;
+      const AabbTree::Hit& old = hits[v];
+      if (st.rounds == 1 || !old.found() || old.distance2 > share2 || stale[old.face]) hits[v] = tree.closest(input.positions[v]);
     });
     std::vector<Deviation> far;
     for (uint32_t v = 0; v < hits.size(); ++v)
@@ -593,7 +600,7 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
         double worst = 0;
         for (uint32_t v : t)
           if (hits[v].found()) worst = std::max(worst, hits[v].distance2);
-        if (worst > kFaceProbeShare * kFaceProbeShare * bound2) near_far.push_back(f);
+        if (worst > share2) near_far.push_back(f);
       }
       // Each such triangle is probed on a barycentric grid about as fine as the bound (a long triangle on a thin
       // tip strays most between its vertices), and its worst probe is the deviation.
@@ -647,6 +654,7 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
     for (uint32_t f = 0; f < m.triangles.size(); ++f)
       if (probe_hit[f].found() && probe_hit[f].distance2 > bound2)
         far.push_back({f, probe_point[f], probe_hit[f].point, probe_hit[f].distance2, kMeshPoint});
+    stale.assign(m.triangles.size(), 0);  // measured (the in>pr test above read them)
     if (far.empty()) break;
     // Farthest first; one insertion per triangle neighbourhood in a round (the rest is measured again next round).
     std::sort(far.begin(), far.end(), [](const Deviation& a, const Deviation& b) {
@@ -694,6 +702,18 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
     }
     if (inserted_this_round == 0) break;
     stale = std::move(touched);
+    stale.resize(m.triangles.size(), 1);
+  }
+  // The faces' worst probes for round_towards_input (the faces the last round changed measured again).
+  if (face_deviation2 != nullptr && options.thin_sheets && options.dense_probes && !probe_hit.empty()) {
+    stale.resize(m.triangles.size(), 1);
+    probe_hit.resize(m.triangles.size());
+    face_deviation2->assign(m.triangles.size(), 0.0);
+    tbb::parallel_for(size_t{0}, m.triangles.size(), [&](size_t f) {
+      (*face_deviation2)[f] = stale[f] ? probe_deviation2(m, {m.triangles[f]}, input_tree, options.max_deviation, true)
+                              : probe_hit[f].found() ? probe_hit[f].distance2
+                                                     : 0.0;
+    });
   }
   // Labels: the new vertices are irregular, and every triangle is labelled again (the split ones lost regularity).
   prm.vertex_relief.resize(m.positions.size(), -1);
@@ -713,7 +733,8 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
 // stays), the one whose triangles stray least (their probe points, pr>in, and those input points, in>pr), and are
 // put exactly there (the stream then holds that point). Worst first; a rounding that turns a triangle over is not
 // taken; where the nearest rounding is as good, the vertex is left as it was.
-size_t round_towards_input(PrmMesh& prm, const Mesh& input, const AabbTree& input_tree, double bound) {
+size_t round_towards_input(PrmMesh& prm, const Mesh& input, const AabbTree& input_tree, double bound,
+                           const std::vector<double>* face_deviation2) {
   Mesh& m = prm.mesh;
   const QuantFrame& frame = prm.frame;
   const double share2 = kRoundShare * kRoundShare * bound * bound;
@@ -728,10 +749,15 @@ size_t round_towards_input(PrmMesh& prm, const Mesh& input, const AabbTree& inpu
   for (uint32_t v = 0; v < hits.size(); ++v)
     if (hits[v].found() && hits[v].distance2 > share2) attached[hits[v].face].push_back(v);
   // pr>in: each face's probe points.
-  std::vector<double> face_dev2(m.triangles.size(), 0.0);
-  tbb::parallel_for(size_t{0}, m.triangles.size(), [&](size_t f) {
-    face_dev2[f] = probe_deviation2(m, {m.triangles[f]}, input_tree, bound, true);
-  });
+  std::vector<double> face_dev2;
+  if (face_deviation2 != nullptr && face_deviation2->size() == m.triangles.size()) {
+    face_dev2 = *face_deviation2;
+  } else {
+    face_dev2.assign(m.triangles.size(), 0.0);
+    tbb::parallel_for(size_t{0}, m.triangles.size(), [&](size_t f) {
+      face_dev2[f] = probe_deviation2(m, {m.triangles[f]}, input_tree, bound, true);
+    });
+  }
   std::vector<std::pair<double, uint32_t>> order;
   for (uint32_t v = 0; v < m.positions.size(); ++v) {
     double worst = 0;

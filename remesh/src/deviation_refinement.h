@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstddef>
+#include <vector>
 
 #include "prm/aabb_tree.h"
 #include "prm/mesh.h"
@@ -59,12 +60,17 @@ struct DeviationRefinementStats {
 
 // prm: a merged PRM with its labels (the new vertices and triangles are labelled; all triangles are relabelled).
 // input_tree: the input's closest-point tree.
+// face_deviation2 (thin_sheets and dense_probes; may be null): set to the refined mesh's faces' squared worst probe
+// distances (their grid_divisions grids), which round_towards_input needs.
 DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, const AabbTree& input_tree,
-                                           const DeviationRefinementOptions& options);
+                                           const DeviationRefinementOptions& options,
+                                           std::vector<double>* face_deviation2 = nullptr);
 
 // After the refinement: the vertices near places straying more than 0.75x `bound` (model units) are put on the way of
 // rounding them to prm.frame's step whose triangles stray least from the input (the stream holds rounded
 // coordinates; a lattice coordinate stays). Returns how many were put elsewhere than their nearest rounding.
-size_t round_towards_input(PrmMesh& prm, const Mesh& input, const AabbTree& input_tree, double bound);
+// face_deviation2: refine_deviations' figures for prm's faces (null or another size: measured here).
+size_t round_towards_input(PrmMesh& prm, const Mesh& input, const AabbTree& input_tree, double bound,
+                           const std::vector<double>* face_deviation2 = nullptr);
 
 }  // namespace prm::remesh

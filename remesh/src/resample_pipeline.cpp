@@ -216,14 +216,15 @@ PrmMesh resample_and_merge(const LayoutInput& layout, const ResampleOptions& opt
     dro.thin_sheets = options.refine_thin_sheets;
     dro.lattice_moves = dro.lattice_reach = dro.dense_probes = dro.normal_reach = dro.stray_check =
         dro.descent_placement = options.refine_notches;
-    const DeviationRefinementStats ds = refine_deviations(prm, input, tree, dro);
+    std::vector<double> face_deviation2;
+    const DeviationRefinementStats ds = refine_deviations(prm, input, tree, dro, &face_deviation2);
     st.deviation_inserts = ds.inserted;
     st.deviation_refused = ds.refused;
     st.deviation_moves = ds.moved;
     // The rounding to the stream's step, chosen near the bound (--local-refinement only: --max-error keeps the first
     // thin-sheet refinement, bench/README.md "Worst-case error").
     if (options.refine_notches) {
-      st.deviation_rounded = round_towards_input(prm, input, tree, options.max_deviation);
+      st.deviation_rounded = round_towards_input(prm, input, tree, options.max_deviation, &face_deviation2);
     }
     st.vertices = prm.mesh.positions.size();
     st.faces = prm.mesh.triangles.size();
