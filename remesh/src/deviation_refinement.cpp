@@ -565,7 +565,8 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
   // to round: only the faces a round changed (`stale`, every face at first) and their vertices are measured again,
   // which gives the same figures as measuring all (h22max5: the probes of every face in every round were most of
   // the refinement's CPU time).
-  std::vector<AabbTree::Hit> probe_hit, vertex_hits, hits;
+  std::vector<AabbTree::Hit> probe_hit, vertex_hits, hits, input_face_hit;
+  std::vector<Vec3> input_face_point;
   std::vector<Vec3> probe_point;
   std::vector<uint8_t> stale;
   while (st.rounds < kMaxRounds && st.inserted < budget) {
@@ -591,32 +592,48 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
     for (uint32_t v = 0; v < hits.size(); ++v)
       if (hits[v].found() && hits[v].distance2 > bound2)
         far.push_back({hits[v].face, hits[v].point, input.positions[v], hits[v].distance2, v});
-    // in>pr between the input's vertices: the centroid and edge midpoints of the input triangles with a vertex
-    // farther than half the bound (Metro samples the faces, and a thin tip's faces stray more than its vertices).
+    // in>pr between the input's vertices (Metro samples the faces, and a thin tip's faces stray more than its
+    // vertices): the input triangles, each on a barycentric grid about as fine as the bound (a long triangle strays
+    // most between its vertices), its worst probe the deviation. The first round probes every triangle with
+    // all_input_faces (h22max5: a long flat input triangle of bunny_zipper's, its vertices on the mesh, strayed
+    // 1.9e-3 of the diagonal inside), else those with a vertex farther than kFaceProbeShare x the bound; later
+    // rounds those again, and those whose worst probe was that far or whose vertices' or worst probe's closest face
+    // the last round changed.
     if (options.thin_sheets) {
+      input_face_hit.resize(input.triangles.size());
+      input_face_point.resize(input.triangles.size());
       std::vector<uint32_t> near_far;
       for (uint32_t f = 0; f < input.triangles.size(); ++f) {
         const Tri& t = input.triangles[f];
         double worst = 0;
+        bool changed = false;
         for (uint32_t v : t)
-          if (hits[v].found()) worst = std::max(worst, hits[v].distance2);
-        if (worst > share2) near_far.push_back(f);
+          if (hits[v].found()) {
+            worst = std::max(worst, hits[v].distance2);
+            changed = changed || (st.rounds > 1 && stale[hits[v].face]);
+          }
+        const AabbTree::Hit& old = input_face_hit[f];
+        const bool probed = options.all_input_faces && old.found();
+        if (worst > share2 || (options.all_input_faces && st.rounds == 1) ||
+            (probed && (changed || old.distance2 > share2 || stale[old.face])))
+          near_far.push_back(f);
+        else if (!options.all_input_faces)
+          input_face_hit[f] = AabbTree::Hit{};
       }
-      // Each such triangle is probed on a barycentric grid about as fine as the bound (a long triangle on a thin
-      // tip strays most between its vertices), and its worst probe is the deviation.
-      std::vector<AabbTree::Hit> face_hit(near_far.size());
-      std::vector<Vec3> face_point(near_far.size());
       tbb::parallel_for(size_t{0}, near_far.size(), [&](size_t i) {
-        const Tri& t = input.triangles[near_far[i]];
+        const uint32_t f = near_far[i];
+        const Tri& t = input.triangles[f];
         const Vec3 &a = input.positions[t[0]], &b = input.positions[t[1]], &c = input.positions[t[2]];
         AabbTree::Hit hint;
+        input_face_hit[f] = AabbTree::Hit{};
         for_each_grid_point(a, b, c, grid_divisions(a, b, c, options.max_deviation), [&](const Vec3& x) {
-          probe_worst(tree, x, options.dense_probes, hint, face_hit[i], face_point[i]);
+          probe_worst(tree, x, options.dense_probes, hint, input_face_hit[f], input_face_point[f]);
         });
       });
-      for (size_t i = 0; i < near_far.size(); ++i)
-        if (face_hit[i].found() && face_hit[i].distance2 > bound2)
-          far.push_back({face_hit[i].face, face_hit[i].point, face_point[i], face_hit[i].distance2, kInputPoint});
+      for (uint32_t f = 0; f < input.triangles.size(); ++f)
+        if (input_face_hit[f].found() && input_face_hit[f].distance2 > bound2)
+          far.push_back({input_face_hit[f].face, input_face_hit[f].point, input_face_point[f],
+                         input_face_hit[f].distance2, kInputPoint});
     }
     // pr>in at the mesh's vertices (an irregular vertex left out on a tip is moved back towards the input, a lattice
     // vertex off the input along its axis).

@@ -48,6 +48,9 @@ struct DeviationRefinementOptions {
   // (h22max5: the horse's ear, where the input's closest point lies on one face of a thin sheet and a vertex moved
   // towards it pushes the triangles off the other face). Needs stray_check.
   bool descent_placement = true;
+  // Every input triangle is probed for in>pr in the first round (not only those with a vertex near the bound), and
+  // again when its worst probe comes near the bound or its closest faces change (h22max5: bunny_zipper).
+  bool all_input_faces = true;
 };
 
 struct DeviationRefinementStats {

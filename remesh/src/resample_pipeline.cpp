@@ -215,7 +215,7 @@ PrmMesh resample_and_merge(const LayoutInput& layout, const ResampleOptions& opt
     dro.max_deviation = options.max_deviation;
     dro.thin_sheets = options.refine_thin_sheets;
     dro.lattice_moves = dro.lattice_reach = dro.dense_probes = dro.normal_reach = dro.stray_check =
-        dro.descent_placement = options.refine_notches;
+        dro.descent_placement = dro.all_input_faces = options.refine_notches;
     std::vector<double> face_deviation2;
     const DeviationRefinementStats ds = refine_deviations(prm, input, tree, dro, &face_deviation2);
     st.deviation_inserts = ds.inserted;
