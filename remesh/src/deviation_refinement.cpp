@@ -499,7 +499,7 @@ bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_f
 // relief's axis only: it keeps its lattice place), when that is within the bound and below kDescentGain x where it
 // is (h22max5: the horse's hoof, a lattice vertex on an 82-degree crease whose axis move towards the input's
 // closest point turned a face over).
-bool descend_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, const PrmMesh& prm,
+bool descend_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, PrmMesh& prm,
                     const AabbTree& input_tree, const DeviationRefinementOptions& options,
                     std::vector<uint8_t>& touched, const Deviation& d) {
   const uint32_t v = d.vertex;
@@ -520,6 +520,13 @@ bool descend_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_fa
   const Vec3 from = m.positions[v];
   if (place_by_descent(m, v, from, std::sqrt(d.distance2), options.max_deviation * options.max_deviation, cost,
                        directions)) {
+    for (uint32_t f : faces) touched[f] = 1;
+    return true;
+  }
+  m.positions[v] = from;
+  if (lattice && place_by_descent(m, v, from, std::sqrt(d.distance2), options.max_deviation * options.max_deviation,
+                                  cost)) {
+    prm.vertex_relief[v] = -1;
     for (uint32_t f : faces) touched[f] = 1;
     return true;
   }
