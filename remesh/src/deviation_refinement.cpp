@@ -203,6 +203,27 @@ bool place_by_descent(Mesh& m, uint32_t nv, const Vec3& start, double step, doub
   return cx < kDescentGain * at_start && cx <= limit2;
 }
 
+// Face f replaced by tris[0] and tris[1..2] appended (a split in three); they are touched.
+void commit_split_in_three(Mesh& m, std::vector<uint8_t>& touched, uint32_t f, const std::vector<Tri>& tris) {
+  m.triangles[f] = tris[0];
+  m.triangles.push_back(tris[1]);
+  m.triangles.push_back(tris[2]);
+  touched[f] = 1;
+  touched.resize(m.triangles.size(), 1);
+}
+
+// Faces f and g (across the split edge) replaced by mine[0] and theirs[0], mine[1] and theirs[1] appended; touched.
+void commit_edge_split(Mesh& m, std::vector<uint8_t>& touched, uint32_t f, uint32_t g, const std::vector<Tri>& mine,
+                       const std::vector<Tri>& theirs) {
+  m.triangles[f] = mine[0];
+  m.triangles.push_back(mine[1]);
+  m.triangles[g] = theirs[0];
+  m.triangles.push_back(theirs[1]);
+  touched[f] = 1;
+  touched[g] = 1;
+  touched.resize(m.triangles.size(), 1);
+}
+
 // Splits face f in three at the new vertex nv, placed at `to` or, where that turns a triangle over, part of the way
 // there from `from` (kShares). False (f unchanged) when every place turns one over or fails the check.
 bool split_in_three(Mesh& m, std::vector<uint8_t>& touched, const StrayCheck& check, uint32_t f, uint32_t nv,
@@ -213,11 +234,7 @@ bool split_in_three(Mesh& m, std::vector<uint8_t>& touched, const StrayCheck& ch
   for (double share : kShares) {
     m.positions[nv] = from + share * (to - from);
     if (!faces_agree(m, old_normal, tris) || !check.passes(m, {t}, tris)) continue;
-    m.triangles[f] = tris[0];
-    m.triangles.push_back(tris[1]);
-    m.triangles.push_back(tris[2]);
-    touched[f] = 1;
-    touched.resize(m.triangles.size(), 1);
+    commit_split_in_three(m, touched, f, tris);
     return true;
   }
   return false;
@@ -276,13 +293,7 @@ bool insert(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std
         if (!faces_agree(m, old_normal, mine) || !faces_agree(m, normal_u, theirs) ||
             !check.passes(m, {t, u}, {mine[0], mine[1], theirs[0], theirs[1]}))
           continue;
-        m.triangles[f] = mine[0];
-        m.triangles.push_back(mine[1]);
-        m.triangles[static_cast<size_t>(g)] = theirs[0];
-        m.triangles.push_back(theirs[1]);
-        touched[f] = 1;
-        touched[static_cast<size_t>(g)] = 1;
-        touched.resize(m.triangles.size(), 1);
+        commit_edge_split(m, touched, f, static_cast<uint32_t>(g), mine, theirs);
         return true;
       }
   }
@@ -311,11 +322,7 @@ bool insert(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std
       const std::vector<Tri> tris = {{t[0], t[1], nv}, {t[1], t[2], nv}, {t[2], t[0], nv}};
       if (place_by_descent(m, nv, d.at, step, check.bound * check.bound,
                            [&] { return cost(tris, {{old_normal, &tris}}); })) {
-        m.triangles[f] = tris[0];
-        m.triangles.push_back(tris[1]);
-        m.triangles.push_back(tris[2]);
-        touched[f] = 1;
-        touched.resize(m.triangles.size(), 1);
+        commit_split_in_three(m, touched, f, tris);
         return true;
       }
     } else {
@@ -332,13 +339,7 @@ bool insert(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std
         const double s = std::clamp(dot(d.at - pa, pb - pa) / std::max(norm2(pb - pa), 1e-300), 0.1, 0.9);
         if (place_by_descent(m, nv, pa + s * (pb - pa), step, check.bound * check.bound,
                              [&] { return cost(all, {{old_normal, &mine}, {normal_u, &theirs}}); })) {
-          m.triangles[f] = mine[0];
-          m.triangles.push_back(mine[1]);
-          m.triangles[static_cast<size_t>(g)] = theirs[0];
-          m.triangles.push_back(theirs[1]);
-          touched[f] = 1;
-          touched[static_cast<size_t>(g)] = 1;
-          touched.resize(m.triangles.size(), 1);
+          commit_edge_split(m, touched, f, static_cast<uint32_t>(g), mine, theirs);
           return true;
         }
       }
