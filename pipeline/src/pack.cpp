@@ -136,6 +136,7 @@ Remeshed remesh_at(const SearchContext& ctx, const PackOptions& options, int bit
   // The notch steps (DeviationRefinementOptions::lattice_moves .. stray_check) only for --local-refinement: with
   // --max-error the search keeps the first thin-sheet refinement (bench/README.md "Worst-case error", h22thin3).
   ro.refine_notches = !(options.max_error > 0);
+  ro.refine_last = options.refine_deviations && !(options.max_error > 0);  // issue 21's CPU budget (h22max5)
   // The search measures what the decoder will output: the candidate quantized to the stream's frame (its lattice
   // vertices are exact already; the heights and the other vertices round to the nearest step), or, when the
   // encoder may choose the heights, the candidate encoded and decoded.

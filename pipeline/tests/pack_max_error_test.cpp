@@ -58,6 +58,53 @@ TEST(PackMaxError, LocalRefinementLowersTheWorstCase) {
   EXPECT_LT(da.rel(da.max), 0.8 * db.rel(db.max));
 }
 
+// RemeshOptions::refine_last (h22max5, issue 21's CPU budget): the search's grids are resampled without the local
+// refinement and only the chosen one is refined (from the step's PRM, finish_resampled: the same mesh as resampling
+// and refining that grid at once), so the last step has an unrefined twin, and the refined result still meets the
+// target. With refine_last false every step is refined.
+TEST(LocalRefinement, RefineLastRefinesOnlyTheChosenGrid) {
+  const prm::Mesh input = shared_mesh("feline_5k.obj");
+  prm::remesh::RemeshOptions o;
+  o.bits = 11;
+  o.target_error = 5e-4;
+  o.refine_error = 3.4e-3;
+  const auto error = [&](const prm::remesh::PrmMesh& candidate) {
+    const prm::DistanceReport d = prm::metro_distance(input, candidate.mesh);
+    return prm::remesh::ErrorEstimate{d.rel(d.rms), d.rel(d.max)};
+  };
+  for (const bool last : {true, false}) {
+    o.refine_last = last;
+    const prm::remesh::RemeshResult r = prm::remesh::remesh(input, o, error);
+    // A refined step has more vertices than the unrefined step at its grid, when the search measured one.
+    const auto has_unrefined_twin = [&](const prm::remesh::SearchStep& st) {
+      for (const prm::remesh::SearchStep& other : r.search)
+        if (&other != &st && other.grid == st.grid && other.vertices < st.vertices) return true;
+      return false;
+    };
+    size_t twins = 0;
+    for (const prm::remesh::SearchStep& st : r.search) twins += has_unrefined_twin(st);
+    std::printf("refine_last %d: %zu steps, %zu refined against an unrefined twin, %zu inserted, RMS %.3e\n", last,
+                r.search.size(), twins, r.prm.stats.deviation_inserts, r.error.rms);
+    EXPECT_GT(r.prm.stats.deviation_inserts, 0u);
+    EXPECT_LE(r.error.rms, o.target_error);
+    if (last) {
+      EXPECT_TRUE(has_unrefined_twin(r.search.back()));  // the chosen grid, measured unrefined in the search first
+      EXPECT_LE(twins, static_cast<size_t>(prm::remesh::kRefineLastTries));
+      // The refinement taken on from the search step's PRM (finish_resampled) gives the mesh that resampling and
+      // refining that grid at once gives.
+      prm::remesh::RemeshOptions fixed = o;
+      fixed.target_error = 0;
+      fixed.refine_last = false;
+      fixed.grid_size = r.search.back().grid_size;
+      const prm::remesh::RemeshResult once = prm::remesh::remesh(input, fixed);
+      EXPECT_EQ(once.prm.mesh.triangles, r.prm.mesh.triangles);
+      EXPECT_EQ(once.prm.mesh.positions, r.prm.mesh.positions);
+    } else {
+      EXPECT_EQ(twins, 0u);  // every step refined: no grid measured twice
+    }
+  }
+}
+
 // The cause of the worst case (bench/README.md "Worst-case error"): the horse's tail and ears are thin sheets the
 // hexagonal resampling cuts off. At the grid a 2e-4 pack chooses (11 bits, step x1.414, 0.007 of the diagonal), the
 // refinement at 6.8x that target with its thin-sheet steps must leave a lower max than the same refinement without

@@ -35,6 +35,11 @@ constexpr double kRoundGain = 0.98;
 // The points of a mesh triangle the first refinement measured against the input (thin_sheets false): its centroid
 // and its edges' midpoints.
 constexpr double kProbes[4][3] = {{1.0 / 3, 1.0 / 3, 1.0 / 3}, {0.5, 0.5, 0}, {0, 0.5, 0.5}, {0.5, 0, 0.5}};
+// place_by_descent: rounds of the pattern search at each step size (the first step the deviation's length, halved
+// kDescentHalvings times), and the share of its start's deviation the place found must stray less than.
+constexpr int kDescentRounds = 4;
+constexpr int kDescentHalvings = 3;
+constexpr double kDescentGain = 0.98;
 // Steps of the walk along a mesh triangle's normal into a notch it bridges (normal_reach).
 constexpr int kReachSteps = 4;
 
@@ -168,6 +173,57 @@ struct StrayCheck {
   }
 };
 
+// Vertex nv's place near `start` where cost() (the worst squared deviation of its triangles; infinite when one
+// turns over) is least: a pattern search along `directions` (both ways), `step` first, then halved kDescentHalvings
+// times. True (nv there) when that place's cost is within limit2 (the squared bound: a place that is only better
+// than before was tried and made the horse worse, 9.6x) and below kDescentGain x the cost at start (for a new
+// vertex the new triangles lie in the old ones' plane there, so that is the old deviation seen by the new probes).
+template <class Cost>
+bool place_by_descent(Mesh& m, uint32_t nv, const Vec3& start, double step, double limit2, Cost&& cost,
+                      const std::vector<Vec3>& directions = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}) {
+  m.positions[nv] = start;
+  const double at_start = cost();
+  if (!std::isfinite(at_start) || !(step > 0)) return false;
+  Vec3 x = start;
+  double cx = at_start;
+  for (int level = 0; level <= kDescentHalvings; ++level, step *= 0.5) {
+    bool improved = true;
+    for (int round = 0; improved && round < kDescentRounds; ++round) {
+      improved = false;
+      for (const Vec3& dir : directions)
+        for (double sign : {-1.0, 1.0}) {
+          const Vec3 y = x + (sign * step) * dir;
+          m.positions[nv] = y;
+          const double cy = cost();
+          if (cy < cx) x = y, cx = cy, improved = true;
+        }
+    }
+  }
+  m.positions[nv] = x;
+  return cx < kDescentGain * at_start && cx <= limit2;
+}
+
+// Face f replaced by tris[0] and tris[1..2] appended (a split in three); they are touched.
+void commit_split_in_three(Mesh& m, std::vector<uint8_t>& touched, uint32_t f, const std::vector<Tri>& tris) {
+  m.triangles[f] = tris[0];
+  m.triangles.push_back(tris[1]);
+  m.triangles.push_back(tris[2]);
+  touched[f] = 1;
+  touched.resize(m.triangles.size(), 1);
+}
+
+// Faces f and g (across the split edge) replaced by mine[0] and theirs[0], mine[1] and theirs[1] appended; touched.
+void commit_edge_split(Mesh& m, std::vector<uint8_t>& touched, uint32_t f, uint32_t g, const std::vector<Tri>& mine,
+                       const std::vector<Tri>& theirs) {
+  m.triangles[f] = mine[0];
+  m.triangles.push_back(mine[1]);
+  m.triangles[g] = theirs[0];
+  m.triangles.push_back(theirs[1]);
+  touched[f] = 1;
+  touched[g] = 1;
+  touched.resize(m.triangles.size(), 1);
+}
+
 // Splits face f in three at the new vertex nv, placed at `to` or, where that turns a triangle over, part of the way
 // there from `from` (kShares). False (f unchanged) when every place turns one over or fails the check.
 bool split_in_three(Mesh& m, std::vector<uint8_t>& touched, const StrayCheck& check, uint32_t f, uint32_t nv,
@@ -178,11 +234,7 @@ bool split_in_three(Mesh& m, std::vector<uint8_t>& touched, const StrayCheck& ch
   for (double share : kShares) {
     m.positions[nv] = from + share * (to - from);
     if (!faces_agree(m, old_normal, tris) || !check.passes(m, {t}, tris)) continue;
-    m.triangles[f] = tris[0];
-    m.triangles.push_back(tris[1]);
-    m.triangles.push_back(tris[2]);
-    touched[f] = 1;
-    touched.resize(m.triangles.size(), 1);
+    commit_split_in_three(m, touched, f, tris);
     return true;
   }
   return false;
@@ -193,7 +245,7 @@ bool split_in_three(Mesh& m, std::vector<uint8_t>& touched, const StrayCheck& ch
 // A straying mesh point (strays_from_input) with `reach`: where the input's closest point would turn a triangle over,
 // the new vertex goes along the normal (normal_reach) instead.
 bool insert(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std::vector<uint8_t>& touched,
-            const AabbTree& input_tree, const StrayCheck& check, bool reach, const Deviation& d) {
+            const AabbTree& input_tree, const StrayCheck& check, bool reach, bool descent, const Deviation& d) {
   const uint32_t f = d.face;
   const Tri t = m.triangles[f];
   const Vec3 old_normal = face_normal(m, t);
@@ -241,15 +293,57 @@ bool insert(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std
         if (!faces_agree(m, old_normal, mine) || !faces_agree(m, normal_u, theirs) ||
             !check.passes(m, {t, u}, {mine[0], mine[1], theirs[0], theirs[1]}))
           continue;
-        m.triangles[f] = mine[0];
-        m.triangles.push_back(mine[1]);
-        m.triangles[static_cast<size_t>(g)] = theirs[0];
-        m.triangles.push_back(theirs[1]);
-        touched[f] = 1;
-        touched[static_cast<size_t>(g)] = 1;
-        touched.resize(m.triangles.size(), 1);
+        commit_edge_split(m, touched, f, static_cast<uint32_t>(g), mine, theirs);
         return true;
       }
+  }
+  // descent_placement: no fixed place served; the place near the split point whose new triangles stray least (and,
+  // for a missed input point, lie nearest it), when that is clearly less than at the split point.
+  if (descent && check.input_tree != nullptr) {
+    const double step = std::sqrt(d.distance2);
+    const auto cost = [&](const std::vector<Tri>& tris, const std::vector<std::pair<Vec3, const std::vector<Tri>*>>&
+                                                            normals) {
+      for (const auto& [normal, group] : normals)
+        if (!faces_agree(m, normal, *group)) return std::numeric_limits<double>::infinity();
+      // The probes leave the vertices out: the new vertex's own distance counts too.
+      double worst = std::max(probe_deviation2(m, tris, *check.input_tree, check.bound, check.dense),
+                              check.input_tree->closest(m.positions[nv]).distance2);
+      if (!strays_from_input(d)) {
+        double nearest = std::numeric_limits<double>::infinity();
+        for (const Tri& w : tris)
+          nearest = std::min(nearest, point_triangle_distance2(d.wanted, m.positions[w[0]], m.positions[w[1]],
+                                                               m.positions[w[2]]));
+        worst = std::max(worst, nearest);
+      }
+      return worst;
+    };
+    const size_t k = static_cast<size_t>(corners[0]);
+    if (bc[k] > kEdgeBarycentric) {
+      const std::vector<Tri> tris = {{t[0], t[1], nv}, {t[1], t[2], nv}, {t[2], t[0], nv}};
+      if (place_by_descent(m, nv, d.at, step, check.bound * check.bound,
+                           [&] { return cost(tris, {{old_normal, &tris}}); })) {
+        commit_split_in_three(m, touched, f, tris);
+        return true;
+      }
+    } else {
+      const uint32_t a = t[(k + 1) % 3], b = t[(k + 2) % 3], c = t[k];
+      const int64_t g = other_face(m, vertex_faces, a, b, f);
+      if (g >= 0 && !touched[static_cast<size_t>(g)]) {
+        const Tri u = m.triangles[static_cast<size_t>(g)];
+        uint32_t e = u[0];
+        for (uint32_t x : u)
+          if (x != a && x != b) e = x;
+        const std::vector<Tri> mine = {{a, nv, c}, {nv, b, c}}, theirs = {{b, nv, e}, {nv, a, e}};
+        const std::vector<Tri> all = {mine[0], mine[1], theirs[0], theirs[1]};
+        const Vec3 pa = m.positions[a], pb = m.positions[b], normal_u = face_normal(m, u);
+        const double s = std::clamp(dot(d.at - pa, pb - pa) / std::max(norm2(pb - pa), 1e-300), 0.1, 0.9);
+        if (place_by_descent(m, nv, pa + s * (pb - pa), step, check.bound * check.bound,
+                             [&] { return cost(all, {{old_normal, &mine}, {normal_u, &theirs}}); })) {
+          commit_edge_split(m, touched, f, static_cast<uint32_t>(g), mine, theirs);
+          return true;
+        }
+      }
+    }
   }
   m.positions.pop_back();
   return false;
@@ -401,6 +495,46 @@ bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_f
   return false;
 }
 
+// descent_placement for a mesh vertex v that strays (pr>in) and that move_rim_vertex left: the place near it where
+// the worst of its own distance to the input and its faces' probe points is least (a lattice vertex along its
+// relief's axis only: it keeps its lattice place), when that is within the bound and below kDescentGain x where it
+// is (h22max5: the horse's hoof, a lattice vertex on an 82-degree crease whose axis move towards the input's
+// closest point turned a face over).
+bool descend_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, PrmMesh& prm,
+                    const AabbTree& input_tree, const DeviationRefinementOptions& options,
+                    std::vector<uint8_t>& touched, const Deviation& d) {
+  const uint32_t v = d.vertex;
+  const std::vector<uint32_t>& faces = vertex_faces[v];
+  if (std::any_of(faces.begin(), faces.end(), [&](uint32_t f) { return touched[f] != 0; })) return false;
+  const std::vector<Tri> tris = triangles_of(m, faces);
+  std::vector<Vec3> normals;
+  for (const Tri& t : tris) normals.push_back(face_normal(m, t));
+  const auto cost = [&] {
+    for (size_t k = 0; k < tris.size(); ++k)
+      if (!faces_agree(m, normals[k], {tris[k]})) return std::numeric_limits<double>::infinity();
+    return std::max(probe_deviation2(m, tris, input_tree, options.max_deviation, options.dense_probes),
+                    input_tree.closest(m.positions[v]).distance2);
+  };
+  const bool lattice = v < prm.vertex_relief.size() && prm.vertex_relief[v] >= 0;
+  std::vector<Vec3> directions = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  if (lattice) directions = {axis_vector(prm.relief_axis[static_cast<size_t>(prm.vertex_relief[v])])};
+  const Vec3 from = m.positions[v];
+  if (place_by_descent(m, v, from, std::sqrt(d.distance2), options.max_deviation * options.max_deviation, cost,
+                       directions)) {
+    for (uint32_t f : faces) touched[f] = 1;
+    return true;
+  }
+  m.positions[v] = from;
+  if (lattice && place_by_descent(m, v, from, std::sqrt(d.distance2), options.max_deviation * options.max_deviation,
+                                  cost)) {
+    prm.vertex_relief[v] = -1;
+    for (uint32_t f : faces) touched[f] = 1;
+    return true;
+  }
+  m.positions[v] = from;
+  return false;
+}
+
 // One probe point x of a triangle whose worst probe is sought: its closest point on `tree`, from the previous probe's
 // answer with the dense probes, or each query alone without them, as the first refinement did (a hint may pick
 // another face where two are as close, e.g. at an edge, and that face is the one split). Kept in (worst, worst_point)
@@ -421,7 +555,8 @@ void probe_worst(const AabbTree& tree, const Vec3& x, bool hinted, AabbTree::Hit
 }  // namespace
 
 DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, const AabbTree& input_tree,
-                                           const DeviationRefinementOptions& options) {
+                                           const DeviationRefinementOptions& options,
+                                           std::vector<double>* face_deviation2) {
   DeviationRefinementStats st;
   if (!(options.max_deviation > 0) || input.positions.empty()) return st;
   Mesh& m = prm.mesh;
@@ -434,44 +569,79 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
   StrayCheck check;
   if (options.thin_sheets && options.stray_check) check = {&input_tree, options.max_deviation, options.dense_probes};
   std::vector<uint8_t> moved;  // rim moves per vertex, over all rounds (at most kMaxMoves: no back and forth)
+  // The pr>in measures (against the input, which does not change) of the mesh's faces and vertices, kept from round
+  // to round: only the faces a round changed (`stale`, every face at first) and their vertices are measured again,
+  // which gives the same figures as measuring all (h22max5: the probes of every face in every round were most of
+  // the refinement's CPU time).
+  std::vector<AabbTree::Hit> probe_hit, vertex_hits, hits, input_face_hit;
+  std::vector<Vec3> input_face_point;
+  std::vector<Vec3> probe_point;
+  std::vector<uint8_t> stale;
   while (st.rounds < kMaxRounds && st.inserted < budget) {
     ++st.rounds;
-    // in>pr: the input vertices far from the mesh.
+    stale.resize(m.triangles.size(), 1);
+    std::vector<uint8_t> stale_vertex(m.positions.size(), 0);
+    for (uint32_t f = 0; f < m.triangles.size(); ++f)
+      if (stale[f])
+        for (uint32_t v : m.triangles[f]) stale_vertex[v] = 1;
+    // in>pr: the input vertices far from the mesh. From the second round only those farther than kFaceProbeShare x
+    // the bound or closest to a face the last round changed are measured again: the others' distance can only have
+    // shrunk (the faces that did not change are where they were), and is read only against that share and the
+    // bound, so the figures are those of measuring all.
     const AabbTree tree(m);
-    std::vector<AabbTree::Hit> hits(input.positions.size());
+    const double share2 = kFaceProbeShare * kFaceProbeShare * bound2;
+    hits.resize(input.positions.size());
     tbb::parallel_for(size_t{0}, input.positions.size(), [&](size_t v) {
-      if (used[v]) hits[v] = tree.closest(input.positions[v]);
+      if (!used[v]) return;
+      const AabbTree::Hit& old = hits[v];
+      if (st.rounds == 1 || !old.found() || old.distance2 > share2 || stale[old.face]) hits[v] = tree.closest(input.positions[v]);
     });
     std::vector<Deviation> far;
     for (uint32_t v = 0; v < hits.size(); ++v)
       if (hits[v].found() && hits[v].distance2 > bound2)
         far.push_back({hits[v].face, hits[v].point, input.positions[v], hits[v].distance2, v});
-    // in>pr between the input's vertices: the centroid and edge midpoints of the input triangles with a vertex
-    // farther than half the bound (Metro samples the faces, and a thin tip's faces stray more than its vertices).
+    // in>pr between the input's vertices (Metro samples the faces, and a thin tip's faces stray more than its
+    // vertices): the input triangles, each on a barycentric grid about as fine as the bound (a long triangle strays
+    // most between its vertices), its worst probe the deviation. The first round probes every triangle with
+    // all_input_faces (h22max5: a long flat input triangle of bunny_zipper's, its vertices on the mesh, strayed
+    // 1.9e-3 of the diagonal inside), else those with a vertex farther than kFaceProbeShare x the bound; later
+    // rounds those again, and those whose worst probe was that far or whose vertices' or worst probe's closest face
+    // the last round changed.
     if (options.thin_sheets) {
+      input_face_hit.resize(input.triangles.size());
+      input_face_point.resize(input.triangles.size());
       std::vector<uint32_t> near_far;
       for (uint32_t f = 0; f < input.triangles.size(); ++f) {
         const Tri& t = input.triangles[f];
         double worst = 0;
+        bool changed = false;
         for (uint32_t v : t)
-          if (hits[v].found()) worst = std::max(worst, hits[v].distance2);
-        if (worst > kFaceProbeShare * kFaceProbeShare * bound2) near_far.push_back(f);
+          if (hits[v].found()) {
+            worst = std::max(worst, hits[v].distance2);
+            changed = changed || (st.rounds > 1 && stale[hits[v].face]);
+          }
+        const AabbTree::Hit& old = input_face_hit[f];
+        const bool probed = options.all_input_faces && old.found();
+        if (worst > share2 || (options.all_input_faces && st.rounds == 1) ||
+            (probed && (changed || old.distance2 > share2 || stale[old.face])))
+          near_far.push_back(f);
+        else if (!options.all_input_faces)
+          input_face_hit[f] = AabbTree::Hit{};
       }
-      // Each such triangle is probed on a barycentric grid about as fine as the bound (a long triangle on a thin
-      // tip strays most between its vertices), and its worst probe is the deviation.
-      std::vector<AabbTree::Hit> face_hit(near_far.size());
-      std::vector<Vec3> face_point(near_far.size());
       tbb::parallel_for(size_t{0}, near_far.size(), [&](size_t i) {
-        const Tri& t = input.triangles[near_far[i]];
+        const uint32_t f = near_far[i];
+        const Tri& t = input.triangles[f];
         const Vec3 &a = input.positions[t[0]], &b = input.positions[t[1]], &c = input.positions[t[2]];
         AabbTree::Hit hint;
+        input_face_hit[f] = AabbTree::Hit{};
         for_each_grid_point(a, b, c, grid_divisions(a, b, c, options.max_deviation), [&](const Vec3& x) {
-          probe_worst(tree, x, options.dense_probes, hint, face_hit[i], face_point[i]);
+          probe_worst(tree, x, options.dense_probes, hint, input_face_hit[f], input_face_point[f]);
         });
       });
-      for (size_t i = 0; i < near_far.size(); ++i)
-        if (face_hit[i].found() && face_hit[i].distance2 > bound2)
-          far.push_back({face_hit[i].face, face_hit[i].point, face_point[i], face_hit[i].distance2, kInputPoint});
+      for (uint32_t f = 0; f < input.triangles.size(); ++f)
+        if (input_face_hit[f].found() && input_face_hit[f].distance2 > bound2)
+          far.push_back({input_face_hit[f].face, input_face_hit[f].point, input_face_point[f],
+                         input_face_hit[f].distance2, kInputPoint});
     }
     // pr>in at the mesh's vertices (an irregular vertex left out on a tip is moved back towards the input, a lattice
     // vertex off the input along its axis).
@@ -479,8 +649,10 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
       std::vector<uint32_t> a_face(m.positions.size(), UINT32_MAX);
       for (uint32_t f = 0; f < m.triangles.size(); ++f)
         for (uint32_t v : m.triangles[f]) a_face[v] = f;
-      std::vector<AabbTree::Hit> vertex_hits(m.positions.size());
+      vertex_hits.resize(m.positions.size());
       tbb::parallel_for(size_t{0}, m.positions.size(), [&](size_t v) {
+        if (!stale_vertex[v]) return;
+        vertex_hits[v] = AabbTree::Hit{};
         const bool lattice = v < prm.vertex_relief.size() && prm.vertex_relief[v] >= 0;
         if ((options.lattice_moves || !lattice) && a_face[v] != UINT32_MAX)
           vertex_hits[v] = input_tree.closest(m.positions[v]);
@@ -491,9 +663,11 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
     }
     // pr>in: the mesh's triangles with a point far from the input (thin sheets: on the grid Metro-like dense probes
     // see, grid_divisions; else the centroid and the edges' midpoints).
-    std::vector<AabbTree::Hit> probe_hit(m.triangles.size());
-    std::vector<Vec3> probe_point(m.triangles.size());
+    probe_hit.resize(m.triangles.size());
+    probe_point.resize(m.triangles.size());
     tbb::parallel_for(size_t{0}, m.triangles.size(), [&](size_t f) {
+      if (!stale[f]) return;
+      probe_hit[f] = AabbTree::Hit{};
       const Tri& t = m.triangles[f];
       const Vec3 &a = m.positions[t[0]], &b = m.positions[t[1]], &c = m.positions[t[2]];
       AabbTree::Hit hint;
@@ -505,6 +679,7 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
     for (uint32_t f = 0; f < m.triangles.size(); ++f)
       if (probe_hit[f].found() && probe_hit[f].distance2 > bound2)
         far.push_back({f, probe_point[f], probe_hit[f].point, probe_hit[f].distance2, kMeshPoint});
+    stale.assign(m.triangles.size(), 0);  // measured (the in>pr test above read them)
     if (far.empty()) break;
     // Farthest first; one insertion per triangle neighbourhood in a round (the rest is measured again next round).
     std::sort(far.begin(), far.end(), [](const Deviation& a, const Deviation& b) {
@@ -528,6 +703,12 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
         ++inserted_this_round;
         continue;
       }
+      if (d.input_vertex == kMeshVertex && options.thin_sheets && options.descent_placement &&
+          descend_vertex(m, vertex_faces, prm, input_tree, options, touched, d)) {
+        ++st.moved;
+        ++inserted_this_round;
+        continue;
+      }
       if (d.input_vertex == kMeshVertex) continue;  // moved or left
       if (options.thin_sheets && d.input_vertex == kMeshPoint &&
           flip_straying_edge(m, vertex_faces, input_tree, options.max_deviation, options.dense_probes, touched, d)) {
@@ -535,7 +716,8 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
         ++inserted_this_round;
         continue;
       }
-      if (insert(m, vertex_faces, touched, input_tree, check, options.thin_sheets && options.normal_reach, d) ||
+      if (insert(m, vertex_faces, touched, input_tree, check, options.thin_sheets && options.normal_reach,
+                 options.thin_sheets && options.descent_placement, d) ||
           (options.thin_sheets && !strays_from_input(d) && insert_on_facing_face(m, vertex_faces, touched, check, d))) {
         ++st.inserted;
         ++inserted_this_round;
@@ -544,6 +726,19 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
       }
     }
     if (inserted_this_round == 0) break;
+    stale = std::move(touched);
+    stale.resize(m.triangles.size(), 1);
+  }
+  // The faces' worst probes for round_towards_input (the faces the last round changed measured again).
+  if (face_deviation2 != nullptr && options.thin_sheets && options.dense_probes && !probe_hit.empty()) {
+    stale.resize(m.triangles.size(), 1);
+    probe_hit.resize(m.triangles.size());
+    face_deviation2->assign(m.triangles.size(), 0.0);
+    tbb::parallel_for(size_t{0}, m.triangles.size(), [&](size_t f) {
+      (*face_deviation2)[f] = stale[f] ? probe_deviation2(m, {m.triangles[f]}, input_tree, options.max_deviation, true)
+                              : probe_hit[f].found() ? probe_hit[f].distance2
+                                                     : 0.0;
+    });
   }
   // Labels: the new vertices are irregular, and every triangle is labelled again (the split ones lost regularity).
   prm.vertex_relief.resize(m.positions.size(), -1);
@@ -563,7 +758,8 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
 // stays), the one whose triangles stray least (their probe points, pr>in, and those input points, in>pr), and are
 // put exactly there (the stream then holds that point). Worst first; a rounding that turns a triangle over is not
 // taken; where the nearest rounding is as good, the vertex is left as it was.
-size_t round_towards_input(PrmMesh& prm, const Mesh& input, const AabbTree& input_tree, double bound) {
+size_t round_towards_input(PrmMesh& prm, const Mesh& input, const AabbTree& input_tree, double bound,
+                           const std::vector<double>* face_deviation2) {
   Mesh& m = prm.mesh;
   const QuantFrame& frame = prm.frame;
   const double share2 = kRoundShare * kRoundShare * bound * bound;
@@ -578,10 +774,15 @@ size_t round_towards_input(PrmMesh& prm, const Mesh& input, const AabbTree& inpu
   for (uint32_t v = 0; v < hits.size(); ++v)
     if (hits[v].found() && hits[v].distance2 > share2) attached[hits[v].face].push_back(v);
   // pr>in: each face's probe points.
-  std::vector<double> face_dev2(m.triangles.size(), 0.0);
-  tbb::parallel_for(size_t{0}, m.triangles.size(), [&](size_t f) {
-    face_dev2[f] = probe_deviation2(m, {m.triangles[f]}, input_tree, bound, true);
-  });
+  std::vector<double> face_dev2;
+  if (face_deviation2 != nullptr && face_deviation2->size() == m.triangles.size()) {
+    face_dev2 = *face_deviation2;
+  } else {
+    face_dev2.assign(m.triangles.size(), 0.0);
+    tbb::parallel_for(size_t{0}, m.triangles.size(), [&](size_t f) {
+      face_dev2[f] = probe_deviation2(m, {m.triangles[f]}, input_tree, bound, true);
+    });
+  }
   std::vector<std::pair<double, uint32_t>> order;
   for (uint32_t v = 0; v < m.positions.size(); ++v) {
     double worst = 0;

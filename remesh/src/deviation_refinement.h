@@ -12,6 +12,7 @@
 #pragma once
 
 #include <cstddef>
+#include <vector>
 
 #include "prm/aabb_tree.h"
 #include "prm/mesh.h"
@@ -42,6 +43,14 @@ struct DeviationRefinementOptions {
   // A lattice vertex of a face that misses an input point moves along its axis towards it before a vertex is
   // inserted there (needs lattice_moves; h22thin3: fewer new vertices, bench/README.md "Worst-case error").
   bool lattice_reach = true;
+  // Where every fixed place of a new vertex (the wanted point, along the normal, part of the way) turns a triangle
+  // over or strays further, a pattern search near the split point for the place whose triangles stray least
+  // (h22max5: the horse's ear, where the input's closest point lies on one face of a thin sheet and a vertex moved
+  // towards it pushes the triangles off the other face). Needs stray_check.
+  bool descent_placement = true;
+  // Every input triangle is probed for in>pr in the first round (not only those with a vertex near the bound), and
+  // again when its worst probe comes near the bound or its closest faces change (h22max5: bunny_zipper).
+  bool all_input_faces = true;
 };
 
 struct DeviationRefinementStats {
@@ -54,12 +63,17 @@ struct DeviationRefinementStats {
 
 // prm: a merged PRM with its labels (the new vertices and triangles are labelled; all triangles are relabelled).
 // input_tree: the input's closest-point tree.
+// face_deviation2 (thin_sheets and dense_probes; may be null): set to the refined mesh's faces' squared worst probe
+// distances (their grid_divisions grids), which round_towards_input needs.
 DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, const AabbTree& input_tree,
-                                           const DeviationRefinementOptions& options);
+                                           const DeviationRefinementOptions& options,
+                                           std::vector<double>* face_deviation2 = nullptr);
 
 // After the refinement: the vertices near places straying more than 0.75x `bound` (model units) are put on the way of
 // rounding them to prm.frame's step whose triangles stray least from the input (the stream holds rounded
 // coordinates; a lattice coordinate stays). Returns how many were put elsewhere than their nearest rounding.
-size_t round_towards_input(PrmMesh& prm, const Mesh& input, const AabbTree& input_tree, double bound);
+// face_deviation2: refine_deviations' figures for prm's faces (null or another size: measured here).
+size_t round_towards_input(PrmMesh& prm, const Mesh& input, const AabbTree& input_tree, double bound,
+                           const std::vector<double>* face_deviation2 = nullptr);
 
 }  // namespace prm::remesh

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <map>
 #include <stdexcept>
 
 #include "prm/error.h"
@@ -86,6 +87,10 @@ RemeshResult remesh(const Mesh& input, const RemeshOptions& options, const Error
   ro.input_tree = options.input_tree;
   const double diagonal = bbox_diagonal(input);
   ro.max_deviation = (options.refine_error > 0 ? options.refine_error : options.max_error) * diagonal;
+  // refine_last: the search's steps unrefined; the refinement's bound is kept for the chosen grid.
+  const bool refine_last = options.refine_last && searched && !(options.max_error > 0) && ro.max_deviation > 0;
+  const double refine_deviation = ro.max_deviation;
+  if (refine_last) ro.max_deviation = 0;
   ro.refine_thin_sheets = options.refine_thin_sheets;
   ro.refine_notches = options.refine_notches;
   const int64_t coarsest = int64_t{1} << options.bits;  // a grid wider than the bounding box
@@ -125,22 +130,33 @@ RemeshResult remesh(const Mesh& input, const RemeshOptions& options, const Error
     for (double s : options.relief_grid_scale)
       if (!(s > 0 && s < 1e3)) throw std::invalid_argument("remesh: a relief grid scale must be in (0, 1000)");
   }
-  auto attempt = [&](int64_t grid) {
-    const auto ts = std::chrono::steady_clock::now();
-    ro.grid = grid;
-    ro.relief_grid.clear();
-    for (double s : options.relief_grid_scale)
-      ro.relief_grid.push_back(std::clamp<int64_t>(std::llround(static_cast<double>(grid) * s), 2, coarsest));
-    PrmMesh prm = resample_and_merge(in, ro);
+  // A remeshed grid measured and recorded as a search step.
+  auto measured = [&](PrmMesh prm, std::chrono::steady_clock::time_point ts) {
     SearchStep step;
-    step.grid = grid;
-    step.grid_size = static_cast<double>(grid) * ro.frame.step;
+    step.grid = static_cast<int64_t>(prm.lattice.A);
+    step.grid_size = static_cast<double>(step.grid) * ro.frame.step;
     step.vertices = prm.stats.vertices;
     step.regular_share = prm.stats.faces ? static_cast<double>(prm.stats.regular_faces) / prm.stats.faces : 0;
     if (error) step.error = error(prm);
     step.seconds = seconds_since(ts);
     result.search.push_back(step);
     return prm;
+  };
+  // refine_last: each search step's PRM before the refinement, by grid (the refinement then starts from there).
+  std::map<int64_t, PrmMesh> fitted;
+  auto set_grid = [&](int64_t grid) {
+    ro.grid = grid;
+    ro.relief_grid.clear();
+    for (double s : options.relief_grid_scale)
+      ro.relief_grid.push_back(std::clamp<int64_t>(std::llround(static_cast<double>(grid) * s), 2, coarsest));
+  };
+  auto attempt = [&](int64_t grid) {
+    const auto ts = std::chrono::steady_clock::now();
+    set_grid(grid);
+    ro.fitted = refine_last && ro.max_deviation <= 0 ? &fitted[grid] : nullptr;
+    PrmMesh prm = resample_and_merge(in, ro);
+    ro.fitted = nullptr;
+    return measured(std::move(prm), ts);
   };
 
   if (!searched) {
@@ -226,6 +242,32 @@ RemeshResult remesh(const Mesh& input, const RemeshOptions& options, const Error
     throw TargetNotReached("remesh: no grid size reached the target error " + std::to_string(options.target_error) +
                            (options.max_error > 0 ? " (max " + std::to_string(options.max_error) + ")" : "") +
                              " in " + std::to_string(options.max_search_steps) + " steps");
+  if (refine_last) {
+    // The refinement lowers the RMS a little: the next coarser grid first when it missed the target unrefined by at
+    // most kRefineLastMargin, then the chosen grid, then the next finer ones, until one refined meets the target.
+    ro.max_deviation = refine_deviation;
+    std::vector<int64_t> grids;
+    for (const SearchStep& st : result.search)
+      if (st.grid == best_grid + 1 && severity(st.error) <= kRefineLastMargin * target) grids = {best_grid + 1};
+    for (int64_t g = best_grid; g >= finest && grids.size() < static_cast<size_t>(kRefineLastTries); --g)
+      grids.push_back(g);
+    for (int64_t g : grids) {
+      const auto it = fitted.find(g);
+      PrmMesh prm;
+      if (it != fitted.end()) {
+        const auto ts = std::chrono::steady_clock::now();
+        set_grid(g);
+        prm = measured(finish_resampled(it->second, in, ro), ts);
+      } else {
+        prm = attempt(g);
+      }
+      if (severity(result.search.back().error) <= target) {
+        best = std::move(prm);
+        result.error = result.search.back().error;
+        break;
+      }
+    }
+  }
   result.prm = std::move(best);
   result.error_measured = true;
   (void)best_error;

@@ -64,6 +64,49 @@ std::vector<Vec3> unit_face_normals(const Mesh& m) {
   return n;
 }
 
+// resample_and_merge's last steps on a merged PRM with fitted heights: the local refinement (max_deviation) and the
+// separation of quantized vertices.
+void finish(PrmMesh& prm, const Mesh& input, const AabbTree& tree, const ResampleOptions& options) {
+  ResampleStats& st = prm.stats;
+  if (options.max_deviation > 0) {
+    DeviationRefinementOptions dro;
+    dro.max_deviation = options.max_deviation;
+    dro.thin_sheets = options.refine_thin_sheets;
+    dro.lattice_moves = dro.lattice_reach = dro.dense_probes = dro.normal_reach = dro.stray_check =
+        dro.descent_placement = dro.all_input_faces = options.refine_notches;
+    std::vector<double> face_deviation2;
+    const DeviationRefinementStats ds = refine_deviations(prm, input, tree, dro, &face_deviation2);
+    st.deviation_inserts = ds.inserted;
+    st.deviation_refused = ds.refused;
+    st.deviation_moves = ds.moved;
+    // The rounding to the stream's step, chosen near the bound (--local-refinement only: --max-error keeps the first
+    // thin-sheet refinement, bench/README.md "Worst-case error").
+    if (options.refine_notches) {
+      st.deviation_rounded = round_towards_input(prm, input, tree, options.max_deviation, &face_deviation2);
+    }
+    st.vertices = prm.mesh.positions.size();
+    st.faces = prm.mesh.triangles.size();
+    st.regular_faces = static_cast<size_t>(std::count(prm.face_regular.begin(), prm.face_regular.end(), 1));
+  }
+  // Last, since it places vertices exactly on quantization points: the stream must hold this mesh, not one with
+  // collapsed triangles.
+  const QuantizedSeparationStats qs = separate_quantized_vertices(prm, &input, &tree);
+  st.quantized_degenerate = qs.degenerate_faces;
+  st.quantized_rounding_turned = qs.rounding_turned;
+  st.quantized_coincident = qs.coincident_vertices;
+  st.quantized_moves = qs.moved;
+  st.quantized_unresolved = qs.unresolved;
+  st.quantized_turned = qs.turned;
+  st.quantized_collapses = qs.collapsed;
+  if (qs.collapsed > 0) {  // fewer vertices and faces, and the faces that took a collapsed vertex's place relabelled
+    st.vertices = prm.mesh.positions.size();
+    st.faces = prm.mesh.triangles.size();
+    st.regular_faces = static_cast<size_t>(std::count(prm.face_regular.begin(), prm.face_regular.end(), 1));
+    st.lattice_vertices = static_cast<size_t>(
+        std::count_if(prm.vertex_relief.begin(), prm.vertex_relief.end(), [](int32_t r) { return r >= 0; }));
+  }
+}
+
 }  // namespace
 
 PrmMesh resample_and_merge(const LayoutInput& layout, const ResampleOptions& options) {
@@ -210,43 +253,19 @@ PrmMesh resample_and_merge(const LayoutInput& layout, const ResampleOptions& opt
     st.heights_moved = hs.moved;
     st.height_moves_reverted = hs.reverted;
   }
-  if (options.max_deviation > 0) {
-    DeviationRefinementOptions dro;
-    dro.max_deviation = options.max_deviation;
-    dro.thin_sheets = options.refine_thin_sheets;
-    dro.lattice_moves = dro.lattice_reach = dro.dense_probes = dro.normal_reach = dro.stray_check = options.refine_notches;
-    const DeviationRefinementStats ds = refine_deviations(prm, input, tree, dro);
-    st.deviation_inserts = ds.inserted;
-    st.deviation_refused = ds.refused;
-    st.deviation_moves = ds.moved;
-    // The rounding to the stream's step, chosen near the bound (--local-refinement only: --max-error keeps the first
-    // thin-sheet refinement, bench/README.md "Worst-case error").
-    if (options.refine_notches) {
-      st.deviation_rounded = round_towards_input(prm, input, tree, options.max_deviation);
-    }
-    st.vertices = prm.mesh.positions.size();
-    st.faces = prm.mesh.triangles.size();
-    st.regular_faces = static_cast<size_t>(std::count(prm.face_regular.begin(), prm.face_regular.end(), 1));
-  }
-  // Last, since it places vertices exactly on quantization points: the stream must hold this mesh, not one with
-  // collapsed triangles.
-  const QuantizedSeparationStats qs = separate_quantized_vertices(prm, &input, &tree);
-  st.quantized_degenerate = qs.degenerate_faces;
-  st.quantized_rounding_turned = qs.rounding_turned;
-  st.quantized_coincident = qs.coincident_vertices;
-  st.quantized_moves = qs.moved;
-  st.quantized_unresolved = qs.unresolved;
-  st.quantized_turned = qs.turned;
-  st.quantized_collapses = qs.collapsed;
-  if (qs.collapsed > 0) {  // fewer vertices and faces, and the faces that took a collapsed vertex's place relabelled
-    st.vertices = prm.mesh.positions.size();
-    st.faces = prm.mesh.triangles.size();
-    st.regular_faces = static_cast<size_t>(std::count(prm.face_regular.begin(), prm.face_regular.end(), 1));
-    st.lattice_vertices = static_cast<size_t>(
-        std::count_if(prm.vertex_relief.begin(), prm.vertex_relief.end(), [](int32_t r) { return r >= 0; }));
-  }
+  if (options.fitted != nullptr) *options.fitted = prm;
+  finish(prm, input, tree, options);
   store_prm_labels(prm);
   return prm;
+}
+
+PrmMesh finish_resampled(PrmMesh fitted, const LayoutInput& layout, const ResampleOptions& options) {
+  const Mesh& input = layout.input ? *layout.input : *layout.refined;
+  std::unique_ptr<AabbTree> own_tree;
+  if (!options.input_tree) own_tree = std::make_unique<AabbTree>(input);
+  finish(fitted, input, options.input_tree ? *options.input_tree : *own_tree, options);
+  store_prm_labels(fitted);
+  return fitted;
 }
 
 void store_prm_labels(PrmMesh& prm) {

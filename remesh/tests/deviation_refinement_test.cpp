@@ -149,4 +149,92 @@ TEST(DeviationRefinement, RoundingTowardsTheInputNearTheBound) {
   }
 }
 
+// descent_placement (h22max5): the horse's hoof was a lattice vertex straying from the input where no move along its
+// axis came within the bound. Here the sphere's pole is 4 out along its normal and its relief's axis is +x, a tangent:
+// along it the pole cannot come back. With descent_placement it becomes irregular and a pattern search along all
+// three axes brings it within the bound, with no vertex inserted; without it the pole stays where it is (its faces
+// are split instead).
+TEST(DeviationRefinement, StrayingLatticeVertexFreedWhenItsAxisCannotServe) {
+  const Mesh input = test::icosphere(2, 40.0);
+  const AabbTree tree(input);
+  for (const bool descent : {true, false}) {
+    PrmMesh prm;
+    prm.mesh = input;
+    uint32_t pole = 0;
+    for (uint32_t v = 1; v < prm.mesh.positions.size(); ++v)
+      if (prm.mesh.positions[v][2] > prm.mesh.positions[pole][2]) pole = v;
+    prm.vertex_relief.assign(prm.mesh.positions.size(), 0);
+    prm.lattice_i.assign(prm.mesh.positions.size(), 0);
+    prm.lattice_j.assign(prm.mesh.positions.size(), 0);
+    prm.relief_axis = {0};  // +x
+    const Vec3 off = prm.mesh.positions[pole] + Vec3{0.0, 0.0, 4.0};
+    prm.mesh.positions[pole] = off;
+    DeviationRefinementOptions o;
+    o.max_deviation = 1.0;
+    o.descent_placement = descent;
+    const DeviationRefinementStats st = refine_deviations(prm, input, tree, o);
+    const double distance = std::sqrt(tree.closest(prm.mesh.positions[pole]).distance2);
+    std::printf("descent %d: pole %.3f from the input, relief %d; %zu moved, %zu inserted\n", descent, distance,
+                prm.vertex_relief[pole], st.moved, st.inserted);
+    if (descent) {
+      EXPECT_EQ(prm.mesh.positions.size(), input.positions.size());
+      EXPECT_LT(distance, o.max_deviation);
+      EXPECT_EQ(prm.vertex_relief[pole], -1);  // irregular now
+      EXPECT_GE(st.moved, 1u);
+    } else {
+      EXPECT_EQ(prm.mesh.positions[pole][2], off[2]);
+      EXPECT_EQ(prm.vertex_relief[pole], 0);
+    }
+  }
+}
+
+// all_input_faces (h22max5): bunny_zipper's worst place was inside a long input triangle whose vertices lie on the
+// mesh. Input: a 10 x 10 square at z 0 and a 6 x 6 one at z -1 (a thin sheet's two sides); the mesh keeps the large
+// square's rim at z 0 and dips to z -1 inside (on the small square), so every input vertex lies within the bound
+// (0.8) of the mesh and every mesh point within it of the input, but the large square's middle is 1 away. Only probing
+// every input triangle sees it (a vertex is inserted there); without it nothing is.
+TEST(DeviationRefinement, LongInputTriangleWithItsVerticesOnTheMesh) {
+  Mesh input = square(0.0, 5.0);
+  const Mesh inner = square(-1.0, 3.0);
+  for (const Vec3& p : inner.positions) input.positions.push_back(p);
+  for (const Tri& t : inner.triangles) input.triangles.push_back({t[0] + 4, t[2] + 4, t[1] + 4});
+  const AabbTree tree(input);
+  Mesh mesh;
+  const double at[4] = {-5.0, -5.0 / 3, 5.0 / 3, 5.0};
+  for (int j = 0; j < 4; ++j)
+    for (int i = 0; i < 4; ++i) {
+      const bool rim = i == 0 || i == 3 || j == 0 || j == 3;
+      mesh.positions.push_back({at[i], at[j], rim ? 0.0 : -1.0});
+    }
+  for (uint32_t j = 0; j < 3; ++j)
+    for (uint32_t i = 0; i < 3; ++i) {
+      const uint32_t a = 4 * j + i;
+      mesh.triangles.push_back({a, a + 1, a + 5});
+      mesh.triangles.push_back({a, a + 5, a + 4});
+    }
+  for (const bool all : {true, false}) {
+    PrmMesh prm;
+    prm.mesh = mesh;
+    prm.vertex_relief.assign(mesh.positions.size(), -1);
+    prm.lattice_i.assign(mesh.positions.size(), 0);
+    prm.lattice_j.assign(mesh.positions.size(), 0);
+    DeviationRefinementOptions o;
+    o.max_deviation = 0.8;
+    o.max_insert_share = 1.0;  // of 16 vertices
+    o.all_input_faces = all;
+    const DeviationRefinementStats st = refine_deviations(prm, input, tree, o);
+    const AabbTree refined(prm.mesh);
+    const double middle = std::sqrt(refined.closest(Vec3{0.0, 0.0, 0.0}).distance2);
+    std::printf("all_input_faces %d: %zu inserted, %zu moved; the large square's middle %.3f from the mesh\n", all,
+                st.inserted, st.moved, middle);
+    if (all) {
+      EXPECT_GE(st.inserted + st.moved, 1u);
+      EXPECT_LT(middle, o.max_deviation);
+    } else {
+      EXPECT_EQ(st.inserted + st.moved, 0u);
+      EXPECT_NEAR(middle, 1.0, 1e-9);
+    }
+  }
+}
+
 }  // namespace prm::remesh

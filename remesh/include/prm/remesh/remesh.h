@@ -29,6 +29,12 @@ struct RemeshOptions {
   double refine_error = 0;
   bool refine_thin_sheets = true;  // ResampleOptions::refine_thin_sheets
   bool refine_notches = true;      // ResampleOptions::refine_notches
+  // With target_error, refine_error and no max_error: the search's grids are resampled without the local refinement,
+  // and only the grid it chooses is refined (the next coarser one first when it missed the target by at most
+  // kRefineLastMargin; then the next finer grids, at most kRefineLastTries in all, until one refined meets the
+  // target; none: the unrefined choice). Issue 21's CPU budget: the refinement at every search step
+  // cost 5-22 s CPU on the paper's models (h22max5, bench/README.md "Worst-case error"). false: every step refined.
+  bool refine_last = false;
   double initial_grid_size = 0;  // with target_error: where the search starts (model units; 0: 1.5 mean edges)
   // A grid size per relief (spec §8.4.2, format 1.5): relief r (an id of the layout) is resampled with the grid
   // round(g x relief_grid_scale[r]) quantization steps (at least 2, at most 2^bits), g being the grid of the options
@@ -102,6 +108,11 @@ struct RemeshResult {
 };
 
 constexpr size_t kMinVertexBudget = size_t{1} << 18;
+// RemeshOptions::refine_last: the grids tried with the refinement after the search, the chosen one first.
+constexpr int kRefineLastTries = 3;
+// RemeshOptions::refine_last: the next coarser grid is refined first when its unrefined error was at most this
+// multiple of the target.
+constexpr double kRefineLastMargin = 1.05;
 constexpr size_t kVertexBudgetPerInputVertex = 4;
 // One search step makes at most this many times the vertices of the step before (or kSearchVertexFloor): an
 // extrapolation from coarse steps, where the error follows no power of the grid size, does not jump to a grid that

@@ -29,6 +29,8 @@ struct LayoutInput {
 // with the irregular edges inside reliefs too, at W = 2: 8,875 and 7,033).
 constexpr double kDefaultErrorFlipWeight = 2.0;
 
+struct PrmMesh;
+
 struct ResampleOptions {
   QuantFrame frame;
   int64_t grid = 0;                    // grid size A in quantization steps (>= 2)
@@ -48,6 +50,9 @@ struct ResampleOptions {
   // The AABB tree of the layout's input mesh, if the caller has one (null: built for each call; at 2M input
   // vertices that is 4.3M triangles, 470 MB and seconds a grid round).
   const AabbTree* input_tree = nullptr;
+  // When set, receives the merged PRM with its fitted heights, before the local refinement and the separation of
+  // quantized vertices (finish_resampled takes it on from there).
+  PrmMesh* fitted = nullptr;
 };
 
 struct ResampleStats {
@@ -91,6 +96,12 @@ struct PrmMesh {
 };
 
 PrmMesh resample_and_merge(const LayoutInput& layout, const ResampleOptions& options);
+
+// resample_and_merge's last steps (the local refinement at options.max_deviation, the separation of quantized
+// vertices) on `fitted`, the PRM that ResampleOptions::fitted received from resample_and_merge with the same layout
+// and grid: the same PRM as resample_and_merge(layout, options) gives, without resampling again
+// (RemeshOptions::refine_last).
+PrmMesh finish_resampled(PrmMesh fitted, const LayoutInput& layout, const ResampleOptions& options);
 
 // Regular patches: connected sets of regular triangles across shared edges (paper §3.3; the codec derives the
 // same sets, spec §8.2).
