@@ -16,7 +16,7 @@
 #    with the relief's vertices: generous to the oracle).
 #    Also with the fitted exponents clamped to b in [-3, -1], d in [1, 6] (noise in three points).
 # Usage: PRM_BIN=build/tools/prm/prm bench/relief_bound.py NAME MESH TARGET [FACTORS, default 1,1.2,1.44]
-#        [--split] (also: every relief's patch bits and error as measured, no refit; see README)
+#        [--no-split] (without the split bound: each relief cut into halves and quarters along its faces' error)
 import json, math, os, subprocess, sys
 
 P = os.environ.get('PRM_BIN', 'build/tools/prm/prm')
@@ -174,6 +174,44 @@ for charge_other, label in ((False, 'patch bits only, rest fixed'), (True, 'rest
         saving = (ub - bb) / (ub + fixed)
         print(f'| {label} | {"clamped b -3..-1, d 1..6" if clamp else "as fitted"} | {(ub + fixed) / 8:,.0f} | '
               f'{(bb + fixed) / 8:,.0f} | {100 * saving:.1f}% | {sc[0]:.2f} / {sc[len(sc) // 2]:.2f} / {sc[-1]:.2f} |')
+
+
+def split_models(models, parts):
+    # Each relief cut into `parts` (2: halves, 4: quarters) of equal area by its faces' own squared error at G
+    # (msq_quarters of the G run); each part with the relief's bits per area (generous to the split: a flat part's
+    # heights cost less than the relief's mean) and its exponents; its msq at G measured. Ranking faces by their own
+    # error at one grid also ranks noise, so the parts differ more than a split made beforehand could: an upper bound.
+    out = []
+    x0 = math.log(G)
+    for i, m in enumerate(models):
+        if m is None:
+            continue
+        A, a, b, c, d = m
+        q = runs[0]['relief_costs']['reliefs'][i]['msq_quarters']
+        per = len(q) // parts
+        for k in range(parts):
+            msq = sum(q[k * per:(k + 1) * per]) / per
+            if msq <= 0:
+                continue
+            out.append((A / parts, a - math.log(parts), b, math.log(msq) - d * x0, d))
+    return out
+
+
+if len(sys.argv) <= 5 or sys.argv[5] != '--no-split':
+    print('\nSplit along the detail (each relief in parts of equal area by its faces\' own error at G; bits per area '
+          'as the relief\'s):\n')
+    print('| parts | accounting | exponents | model bytes at G | oracle bytes | saving of the stream | scales (min / median / max) |')
+    print('|---|---|---|---|---|---|---|')
+    for parts in (2, 4):
+        for charge_other, label in ((False, 'patch bits only, rest fixed'), (True, 'rest charged by lattice vertices')):
+            models = split_models(relief_models(charge_other), parts)
+            pbits, obits = stream_parts(runs[0])
+            for clamp in (False, True):
+                ub, bb, sc = oracle(models, clamp)
+                fixed = 0 if charge_other else obits
+                print(f'| {parts} | {label} | {"clamped" if clamp else "as fitted"} | {(ub + fixed) / 8:,.0f} | '
+                      f'{(bb + fixed) / 8:,.0f} | {100 * (ub - bb) / (ub + fixed):.1f}% | '
+                      f'{sc[0]:.2f} / {sc[len(sc) // 2]:.2f} / {sc[-1]:.2f} |')
 bs = [m for m in relief_models(False) if m]
 print(f'\nFitted exponents (patch bits, per relief): bits ~ g^b, b median {sorted(m[2] for m in bs)[len(bs) // 2]:.2f} '
       f'[{min(m[2] for m in bs):.2f}, {max(m[2] for m in bs):.2f}]; msq ~ g^d, d median '

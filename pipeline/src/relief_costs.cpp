@@ -47,6 +47,7 @@ ReliefCosts relief_costs(const remesh::PrmMesh& prm, const codec::EncodeReport& 
   for (size_t r = 0; r < reliefs; ++r) {
     out.reliefs[r].area = e.area[r];
     out.reliefs[r].msq = e.msq[r];
+    out.reliefs[r].msq_quarters = e.msq_quarters[r];
   }
   return out;
 }

@@ -271,6 +271,15 @@ TEST(ReliefGrids, ReliefCostsAddUpToThePatchesSection) {
     if (rc.lattice_vertices > 16) {
       EXPECT_GT(rc.area, 0.0);
       EXPECT_GT(rc.msq, 0.0);
+      // The quarters by the faces' own error: increasing, and about averaging to the relief's msq.
+      double mean = 0;
+      for (size_t k = 0; k < rc.msq_quarters.size(); ++k) {
+        if (k > 0) EXPECT_LE(rc.msq_quarters[k - 1], rc.msq_quarters[k]);
+        mean += rc.msq_quarters[k] / rc.msq_quarters.size();
+      }
+      EXPECT_GE(rc.msq_quarters.back(), rc.msq);
+      EXPECT_LE(rc.msq_quarters.front(), rc.msq);
+      EXPECT_NEAR(mean, rc.msq, 0.5 * rc.msq);  // quarters of about equal area (faces are not split)
     }
   }
   EXPECT_GE(grids.size(), 2u);

@@ -132,6 +132,26 @@ ReliefErrorSample measure_relief_error(const PrmMesh& prm, const AabbTree& input
   }
   for (size_t r = 0; r < reliefs; ++r)
     if (out.area[r] > 0) out.msq[r] /= out.area[r];
+  // The quarters: each relief's faces by their own msq, cut at every quarter of the relief's area.
+  constexpr int kQ = ReliefErrorSample::kErrorQuarters;
+  std::vector<std::vector<uint32_t>> faces(reliefs);
+  for (size_t f = 0; f < nf; ++f)
+    if (face_relief[f] >= 0 && face_area[f] > 0) faces[static_cast<size_t>(face_relief[f])].push_back(static_cast<uint32_t>(f));
+  out.msq_quarters.assign(reliefs, std::array<double, kQ>{});
+  for (size_t r = 0; r < reliefs; ++r) {
+    std::sort(faces[r].begin(), faces[r].end(),
+              [&](uint32_t x, uint32_t y) { return face_sum[x] < face_sum[y]; });
+    std::array<double, kQ> area{}, sum{};
+    double done = 0;
+    for (uint32_t f : faces[r]) {
+      const int k = std::min(kQ - 1, static_cast<int>(kQ * (done + face_area[f] / 2) / out.area[r]));
+      area[static_cast<size_t>(k)] += face_area[f];
+      sum[static_cast<size_t>(k)] += face_area[f] * face_sum[f] / 7.0;
+      done += face_area[f];
+    }
+    for (int k = 0; k < kQ; ++k)
+      if (area[static_cast<size_t>(k)] > 0) out.msq_quarters[r][static_cast<size_t>(k)] = sum[static_cast<size_t>(k)] / area[static_cast<size_t>(k)];
+  }
   return out;
 }
 

@@ -30,7 +30,8 @@ nlohmann::json relief_costs_json(const pipeline::PackResult& r, const Mesh& inpu
   nlohmann::json reliefs = nlohmann::json::array();
   for (const pipeline::ReliefCost& rc : c.reliefs)
     reliefs.push_back({{"grid_steps", rc.grid}, {"bits", rc.bits}, {"lattice_vertices", rc.lattice_vertices},
-                       {"carried_vertices", rc.carried_vertices}, {"area", rc.area}, {"msq", rc.msq}});
+                       {"carried_vertices", rc.carried_vertices}, {"area", rc.area}, {"msq", rc.msq},
+                       {"msq_quarters", rc.msq_quarters}});
   return {{"prologue_bits", c.prologue_bits}, {"unattributed_bits", c.unattributed_bits}, {"reliefs", reliefs}};
 }
 

@@ -4,11 +4,13 @@
 // put beside each relief's lattice vertices, area and squared distance to the input (remesh::measure_relief_error).
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <vector>
 
 #include "prm/aabb_tree.h"
 #include "prm/codec.h"
+#include "prm/remesh/relief_grids.h"
 #include "prm/remesh/resample.h"
 
 namespace prm::pipeline {
@@ -19,6 +21,7 @@ struct ReliefCost {
   uint32_t lattice_vertices = 0;   // its grid vertices in the remeshed mesh
   uint32_t carried_vertices = 0;   // of them, the ones whose positions the patches section carries
   double area = 0, msq = 0;        // measure_relief_error: its faces' area and mean squared distance (model units)
+  std::array<double, remesh::ReliefErrorSample::kErrorQuarters> msq_quarters{};  // its faces' msq by quarter of area
 };
 
 struct ReliefCosts {
