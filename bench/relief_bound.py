@@ -17,6 +17,7 @@
 #    Also with the fitted exponents clamped to b in [-3, -1], d in [1, 6] (noise in three points).
 # Usage: PRM_BIN=build/tools/prm/prm bench/relief_bound.py NAME MESH TARGET [FACTORS, default 1,1.2,1.44]
 #        [--no-split] (without the split bound: each relief cut into halves and quarters along its faces' error)
+#        SPLIT_BIN=build/bench/prm_bench_relief_split: also the split with classes from a third grid (no noise ranking)
 import json, math, os, subprocess, sys
 
 P = os.environ.get('PRM_BIN', 'build/tools/prm/prm')
@@ -212,6 +213,51 @@ if len(sys.argv) <= 5 or sys.argv[5] != '--no-split':
                 print(f'| {parts} | {label} | {"clamped" if clamp else "as fitted"} | {(ub + fixed) / 8:,.0f} | '
                       f'{(bb + fixed) / 8:,.0f} | {100 * (ub - bb) / (ub + fixed):.1f}% | '
                       f'{sc[0]:.2f} / {sc[len(sc) // 2]:.2f} / {sc[-1]:.2f} |')
+
+
+def class_models(models, split):
+    # The split with classes from a third grid (prm_bench_relief_split): per relief and class its area share of the
+    # relief's bits (bits per area as the relief's: generous) and its own msq exponent from the two measured grids.
+    g0, g1 = split['runs'][0], split['runs'][1]
+    x0, x1 = math.log(g0['grid_size']), math.log(g1['grid_size'])
+    out = []
+    for i, m in enumerate(models):
+        if m is None or i >= len(g0['reliefs']):
+            continue
+        A, a, b, c, d = m
+        r0, r1 = g0['reliefs'][i], g1['reliefs'][i]
+        ks = [k for k in range(len(r0['area'])) if r0['msq'][k] > 0 and r1['msq'][k] > 0]
+        area = sum(r0['area'][k] for k in ks)
+        for k in ks:
+            share = r0['area'][k] / area
+            dk = (math.log(r1['msq'][k]) - math.log(r0['msq'][k])) / (x1 - x0)
+            out.append((A * share, a + math.log(share), b, math.log(r0['msq'][k]) - dk * x0, dk))
+    return out
+
+
+if os.environ.get('SPLIT_BIN'):
+    cmd = ['nice', '-n', '10', os.environ['SPLIT_BIN'], mesh, repr(G), str(B), repr(S), repr(L)]
+    r = subprocess.run(cmd, capture_output=True, text=True)
+    if r.returncode != 0:
+        sys.exit(f'{" ".join(cmd)} failed: {r.stderr[-400:]}')
+    open(os.path.join(OUT, f'bound_{name}_split.json'), 'w').write(r.stdout)
+    split = json.loads(r.stdout)
+    print(f'\nSplit along the detail, classes from a third grid (`{" ".join(cmd[3:])}`: class grid '
+          f'{split["class_grid"]:.5g}, measured at {split["runs"][0]["grid_size"]:.5g} and '
+          f'{split["runs"][1]["grid_size"]:.5g}; unclassified area '
+          f'{100 * split["runs"][0]["unclassified_area"] / split["runs"][0]["area"]:.1f}% / '
+          f'{100 * split["runs"][1]["unclassified_area"] / split["runs"][1]["area"]:.1f}%):\n')
+    print('| parts | accounting | exponents | model bytes at G | oracle bytes | saving of the stream | scales (min / median / max) |')
+    print('|---|---|---|---|---|---|---|')
+    for charge_other, label in ((False, 'patch bits only, rest fixed'), (True, 'rest charged by lattice vertices')):
+        models = class_models(relief_models(charge_other), split)
+        pbits, obits = stream_parts(runs[0])
+        for clamp in (False, True):
+            ub, bb, sc = oracle(models, clamp)
+            fixed = 0 if charge_other else obits
+            print(f'| 4 (third grid) | {label} | {"clamped" if clamp else "as fitted"} | {(ub + fixed) / 8:,.0f} | '
+                  f'{(bb + fixed) / 8:,.0f} | {100 * (ub - bb) / (ub + fixed):.1f}% | '
+                  f'{sc[0]:.2f} / {sc[len(sc) // 2]:.2f} / {sc[-1]:.2f} |')
 bs = [m for m in relief_models(False) if m]
 print(f'\nFitted exponents (patch bits, per relief): bits ~ g^b, b median {sorted(m[2] for m in bs)[len(bs) // 2]:.2f} '
       f'[{min(m[2] for m in bs):.2f}, {max(m[2] for m in bs):.2f}]; msq ~ g^d, d median '

@@ -50,6 +50,14 @@ struct ReliefErrorSample {
   static constexpr int kErrorQuarters = 4;
   std::vector<std::array<double, kErrorQuarters>> msq_quarters;
 };
+// Per face of prm.mesh (measure_relief_error's samples): its relief (-1: no grid vertex of a relief, not sampled),
+// area, mean squared distance of its seven points to the input, and the input face closest to its centroid.
+struct FaceErrors {
+  std::vector<int32_t> relief;
+  std::vector<double> area, msq;
+  std::vector<uint32_t> input_face;  // AabbTree::kNoFace when not sampled
+};
+FaceErrors measure_face_error(const PrmMesh& prm, const AabbTree& input_tree, size_t reliefs);
 ReliefErrorSample measure_relief_error(const PrmMesh& prm, const AabbTree& input_tree, size_t reliefs, double grid);
 
 // Equal slope from two samples a (grid g_a) and b (g_b > g_a): per relief, msq_r(g) = msq_r(g_a) (g / g_a)^p_r with
