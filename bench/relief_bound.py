@@ -160,22 +160,25 @@ def oracle(models, clamp_exponents):
     return uniform_bits, best_bits, scales
 
 
+def oracle_rows(prefix, make_models):
+    # One table row per accounting and exponent choice: make_models(charge_other) gives the units' models.
+    pbits, obits = stream_parts(runs[0])
+    for charge_other, label in ((False, 'patch bits only, rest fixed'), (True, 'rest charged by lattice vertices')):
+        models = make_models(charge_other)
+        for clamp in (False, True):
+            ub, bb, sc = oracle(models, clamp)
+            fixed = 0 if charge_other else obits  # the sections the oracle does not move
+            print(f'| {prefix}{label} | {"clamped b -3..-1, d 1..6" if clamp else "as fitted"} | {(ub + fixed) / 8:,.0f} | '
+                  f'{(bb + fixed) / 8:,.0f} | {100 * (ub - bb) / (ub + fixed):.1f}% | '
+                  f'{sc[0]:.2f} / {sc[len(sc) // 2]:.2f} / {sc[-1]:.2f} |')
+
+
 print(f'\nFixed grids {", ".join(f"{g:.5g}" for g in gs)} (x {", ".join(map(str, factors))}): '
       + ', '.join(f'{j["bytes"]["total"]} B / rms {j["distance"]["rms_rel"]:.4e}' for j in runs))
 print('\nThe oracle (continuous per-relief grids in [%g, %g] x G, equal slope, no seams, no table rounding):\n' % (LO, HI))
 print('| accounting | exponents | model bytes at G | oracle bytes | saving of the stream | scales (min / median / max) |')
 print('|---|---|---|---|---|---|')
-total_bytes = runs[0]['bytes']['total']
-for charge_other, label in ((False, 'patch bits only, rest fixed'), (True, 'rest charged by lattice vertices')):
-    models = relief_models(charge_other)
-    pbits, obits = stream_parts(runs[0])
-    for clamp in (False, True):
-        ub, bb, sc = oracle(models, clamp)
-        fixed = 0 if charge_other else obits  # the sections the oracle does not move
-        saving = (ub - bb) / (ub + fixed)
-        print(f'| {label} | {"clamped b -3..-1, d 1..6" if clamp else "as fitted"} | {(ub + fixed) / 8:,.0f} | '
-              f'{(bb + fixed) / 8:,.0f} | {100 * saving:.1f}% | {sc[0]:.2f} / {sc[len(sc) // 2]:.2f} / {sc[-1]:.2f} |')
-
+oracle_rows('', relief_models)
 
 def split_models(models, parts):
     # Each relief cut into `parts` (2: halves, 4: quarters) of equal area by its faces' own squared error at G
@@ -204,16 +207,7 @@ if len(sys.argv) <= 5 or sys.argv[5] != '--no-split':
     print('| parts | accounting | exponents | model bytes at G | oracle bytes | saving of the stream | scales (min / median / max) |')
     print('|---|---|---|---|---|---|---|')
     for parts in (2, 4):
-        for charge_other, label in ((False, 'patch bits only, rest fixed'), (True, 'rest charged by lattice vertices')):
-            models = split_models(relief_models(charge_other), parts)
-            pbits, obits = stream_parts(runs[0])
-            for clamp in (False, True):
-                ub, bb, sc = oracle(models, clamp)
-                fixed = 0 if charge_other else obits
-                print(f'| {parts} | {label} | {"clamped" if clamp else "as fitted"} | {(ub + fixed) / 8:,.0f} | '
-                      f'{(bb + fixed) / 8:,.0f} | {100 * (ub - bb) / (ub + fixed):.1f}% | '
-                      f'{sc[0]:.2f} / {sc[len(sc) // 2]:.2f} / {sc[-1]:.2f} |')
-
+        oracle_rows(f'{parts} | ', lambda charge_other: split_models(relief_models(charge_other), parts))
 
 def class_models(models, split):
     # The split with classes from a third grid (prm_bench_relief_split): per relief and class its area share of the
@@ -249,15 +243,7 @@ if os.environ.get('SPLIT_BIN'):
           f'{100 * split["runs"][1]["unclassified_area"] / split["runs"][1]["area"]:.1f}%):\n')
     print('| parts | accounting | exponents | model bytes at G | oracle bytes | saving of the stream | scales (min / median / max) |')
     print('|---|---|---|---|---|---|---|')
-    for charge_other, label in ((False, 'patch bits only, rest fixed'), (True, 'rest charged by lattice vertices')):
-        models = class_models(relief_models(charge_other), split)
-        pbits, obits = stream_parts(runs[0])
-        for clamp in (False, True):
-            ub, bb, sc = oracle(models, clamp)
-            fixed = 0 if charge_other else obits
-            print(f'| 4 (third grid) | {label} | {"clamped" if clamp else "as fitted"} | {(ub + fixed) / 8:,.0f} | '
-                  f'{(bb + fixed) / 8:,.0f} | {100 * (ub - bb) / (ub + fixed):.1f}% | '
-                  f'{sc[0]:.2f} / {sc[len(sc) // 2]:.2f} / {sc[-1]:.2f} |')
+    oracle_rows('4 (third grid) | ', lambda charge_other: class_models(relief_models(charge_other), split))
 bs = [m for m in relief_models(False) if m]
 print(f'\nFitted exponents (patch bits, per relief): bits ~ g^b, b median {sorted(m[2] for m in bs)[len(bs) // 2]:.2f} '
       f'[{min(m[2] for m in bs):.2f}, {max(m[2] for m in bs):.2f}]; msq ~ g^d, d median '
