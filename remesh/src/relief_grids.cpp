@@ -102,6 +102,7 @@ FaceErrors measure_face_error(const PrmMesh& prm, const AabbTree& input_tree, si
   FaceErrors e;
   e.area.assign(nf, 0.0);
   e.msq.assign(nf, 0.0);
+  e.sum.assign(nf, 0.0);
   e.relief.assign(nf, -1);
   e.input_face.assign(nf, AabbTree::kNoFace);
   // Barycentric weights of the seven points, the centroid first.
@@ -124,6 +125,7 @@ FaceErrors measure_face_error(const PrmMesh& prm, const AabbTree& input_tree, si
       if (&w == &kPoints[0]) e.input_face[f] = hint.face;
       sum += hint.distance2;
     }
+    e.sum[f] = sum;
     e.msq[f] = sum / 7.0;
   });
   return e;
@@ -142,7 +144,7 @@ ReliefErrorSample measure_relief_error(const PrmMesh& prm, const AabbTree& input
     if (face_relief[f] < 0) continue;
     const size_t r = static_cast<size_t>(face_relief[f]);
     out.area[r] += face_area[f];
-    out.msq[r] += face_area[f] * e.msq[f];
+    out.msq[r] += face_area[f] * e.sum[f] / 7.0;  // as before measure_face_error (the --adaptive model's rounding)
   }
   for (size_t r = 0; r < reliefs; ++r)
     if (out.area[r] > 0) out.msq[r] /= out.area[r];

@@ -55,6 +55,7 @@ struct ReliefErrorSample {
 struct FaceErrors {
   std::vector<int32_t> relief;
   std::vector<double> area, msq;
+  std::vector<double> sum;           // the seven squared distances' sum (msq = sum / 7)
   std::vector<uint32_t> input_face;  // AabbTree::kNoFace when not sampled
 };
 FaceErrors measure_face_error(const PrmMesh& prm, const AabbTree& input_tree, size_t reliefs);
