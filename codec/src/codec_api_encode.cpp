@@ -246,6 +246,14 @@ Status encode_impl(const uint32_t* q, size_t nv, const uint32_t* tris, size_t nt
     r.holes = static_cast<uint32_t>(plan.dummies.size());
     r.handles = static_cast<uint32_t>(plan.handles.size() / 2);
     r.unreferenced_dropped = plan.unreferenced;
+    r.patch_prologue_bits = patch_stats.prologue_bits;
+    for (size_t p = 0; p < patch_stats.header_bits.size(); ++p)
+      r.patch_costs.push_back({patch_stats.header_bits[p], patch_stats.height_bits[p], patch_stats.new_vertices[p]});
+    if (!patch_stats.vertex_patch.empty()) {
+      r.vertex_patch.assign(nv, UINT32_MAX);
+      for (uint32_t v = 0; v < mesh.num_vertices; ++v)
+        if (plan.vertex_input[v] != UINT32_MAX) r.vertex_patch[plan.vertex_input[v]] = patch_stats.vertex_patch[v];
+    }
     r.vertex_order.reserve(real);
     for (uint32_t v = 0; v < mesh.num_vertices; ++v)
       if (plan.vertex_input[v] != UINT32_MAX) r.vertex_order.push_back(plan.vertex_input[v]);

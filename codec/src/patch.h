@@ -26,6 +26,13 @@ struct PatchStats {
   uint32_t patches = 0;
   uint32_t patch_vertices = 0;
   uint32_t predicted_patches = 0;  // §9.7: patches coded by linear prediction
+  // What each part cost, in bits of the range coder (RangeEncoder::bits(); EncodeReport::patch_costs): the section's
+  // fields and predictor table before the first patch (§8.4, §9.7.2), then per patch (in section order) its header
+  // (§8.4, §8.4.1, §8.4.2) and its heights (§9.7.4 Method included), and the vertices whose positions it carries.
+  double prologue_bits = 0, coded_bits = 0;  // coded_bits: everything before the termination (§5.6)
+  std::vector<double> header_bits, height_bits;
+  std::vector<uint32_t> new_vertices;
+  std::vector<uint32_t> vertex_patch;  // per closed-mesh vertex: the patch carrying its position, or UINT32_MAX
 };
 
 // §8-§9 How the encoder codes the patches section: its fields and the choices behind them.

@@ -389,9 +389,14 @@ Status PatchSectionWriter::write(const FittedTable* given, std::vector<uint8_t>&
   start();
   if (predicted_) PRM_TRY(write_table(given));
   uint32_t patch_vertices = 0, predicted_patches = 0;
+  PatchStats costs;  // the bits of each part (PatchStats), kept when this writing is the one coded
+  costs.prologue_bits = rc_.bits();
+  costs.vertex_patch.assign(mesh_.num_vertices, UINT32_MAX);
   for (size_t p = 0; p < ps_.size(); ++p) {
     PRM_TRY(prepare(p));
+    const double before_header = rc_.bits();
     write_header(p);
+    const double before_heights = rc_.bits();
     const bool lp = predicted_ && use_prediction(raster_.build(level_), level_.size(), coding_.predict_every_patch);
     if (predicted_) bit_(models_->lp.method, lp);  // §9.7.4 Method
     if (lp) {
@@ -401,11 +406,17 @@ Status PatchSectionWriter::write(const FittedTable* given, std::vector<uint8_t>&
       PRM_TRY(write_difference_heights(p));
     }
     release();
+    costs.header_bits.push_back(before_heights - before_header);
+    costs.height_bits.push_back(rc_.bits() - before_heights);
+    uint32_t carried = 0;
     for (uint32_t l = 0; l < level_.size(); ++l) {
-      patch_vertices += !known_[global_[l]];
+      if (!known_[global_[l]]) costs.vertex_patch[global_[l]] = static_cast<uint32_t>(p), ++carried;
       known_[global_[l]] = 1;
     }
+    costs.new_vertices.push_back(carried);
+    patch_vertices += carried;
   }
+  costs.coded_bits = rc_.bits();
   payload = rc_.finish();
   // Spec Appendix B.2: the chosen heights refined together, then coded as they are.
   if (free_heights_ && freedom_->sweeps > 0 && !refine_.empty()) {
@@ -417,6 +428,7 @@ Status PatchSectionWriter::write(const FittedTable* given, std::vector<uint8_t>&
   }
   if (chosen) *chosen = cw_;
   if (stats) {
+    *stats = std::move(costs);
     stats->patches = static_cast<uint32_t>(ps_.size());
     stats->patch_vertices = patch_vertices;
     stats->predicted_patches = predicted_patches;

@@ -2,6 +2,7 @@
 // handling (a cached byte plus a run of 0xFF bytes), whose first output byte (always 0) is not written.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -36,6 +37,14 @@ class RangeEncoder {
         shift_low();
       }
     }
+  }
+
+  // The information coded so far, in bits (an encoder statistic, not part of the format): 8 per byte shifted out
+  // of Low (the held-back cache byte and pending 0xFF bytes included, the skipped first byte not) plus what the
+  // range has shrunk by since its last byte, 32 - log2(Range). finish() adds 24..32 bits to it (§5.6).
+  double bits() const {
+    const uint64_t shifted = out_.size() + cache_size_ - (skip_first_ ? 1 : 0);
+    return 8.0 * static_cast<double>(shifted) + 32.0 - std::log2(static_cast<double>(range_));
   }
 
   // §5.6 Termination: flushes Low; the returned bytes are the complete coded data.

@@ -140,5 +140,46 @@ TEST(PatchGrids, EveryByteFlippedIsAMeshOrANamedError) {
   EXPECT_GT(rejected, 0u);
 }
 
+// The encoder's per-patch costs (EncodeReport::patch_costs): the prologue and every patch's header and height bits
+// add up to the patches section less the range coder's termination (24 to 32 bits, §5.6); every patch vertex is
+// charged to exactly one patch, the one counting it. At every height coding, on one grid and on two.
+TEST(PatchGrids, PatchCostsAddUpToTheSection) {
+  const QuantizedMesh m = two_pillows();
+  for (const std::vector<int64_t>& extra : {std::vector<int64_t>{}, std::vector<int64_t>{6}})
+    for (int depth : {-1, 0, 3, 7}) {
+      EncodeReport rep;
+      const auto enc = encode(m, 8, extra, &rep, depth);
+      ASSERT_TRUE(enc.ok()) << enc.status.message;
+      ASSERT_EQ(rep.patch_costs.size(), rep.regular_patches) << depth;
+      ASSERT_GT(rep.patch_costs.size(), 0u);
+      double total = rep.patch_prologue_bits;
+      uint32_t vertices = 0;
+      for (const EncodeReport::PatchCost& c : rep.patch_costs) {
+        EXPECT_GT(c.header_bits, 0.0);  // at least its axis and alignment
+        EXPECT_GE(c.height_bits, 0.0);
+        total += c.header_bits + c.height_bits;
+        vertices += c.vertices;
+      }
+      EXPECT_EQ(vertices, rep.patch_vertices);
+      const double slack = 8.0 * static_cast<double>(rep.patch_bytes) - total;
+      EXPECT_GE(slack, 24.0 - 1e-6) << "depth " << depth << " grids " << extra.size() + 1;
+      EXPECT_LE(slack, 32.0 + 1e-6) << "depth " << depth << " grids " << extra.size() + 1;
+      ASSERT_EQ(rep.vertex_patch.size(), m.nv());
+      std::vector<uint32_t> counted(rep.patch_costs.size(), 0);
+      for (uint32_t p : rep.vertex_patch)
+        if (p != UINT32_MAX) {
+          ASSERT_LT(p, counted.size());
+          ++counted[p];
+        }
+      for (size_t p = 0; p < counted.size(); ++p) EXPECT_EQ(counted[p], rep.patch_costs[p].vertices) << p;
+    }
+  // A general stream has no patches section and no costs.
+  EncodeReport rep;
+  const std::vector<float> xyz(m.q.begin(), m.q.end());
+  ASSERT_TRUE(codec::encode(xyz.data(), m.nv(), m.tris.data(), m.nt(), {}, &rep).ok());
+  EXPECT_TRUE(rep.patch_costs.empty());
+  EXPECT_TRUE(rep.vertex_patch.empty());
+}
+
 }  // namespace
 }  // namespace prm::codec::test

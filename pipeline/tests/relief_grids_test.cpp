@@ -18,6 +18,7 @@
 #include "prm/vec3.h"
 #include "prm/pipeline/codec_bridge.h"
 #include "prm/pipeline/pack.h"
+#include "prm/pipeline/relief_costs.h"
 #include "prm/remesh/relief_grids.h"
 #include "prm/remesh/remesh.h"
 
@@ -241,6 +242,56 @@ TEST(ReliefGrids, PackAdaptive) {
   const pipeline::PackResult a14 = pipeline::pack(input, old), u14 = pipeline::pack(input, u);
   EXPECT_EQ(a14.report.grid_sizes, 1u);
   EXPECT_EQ(a14.stream, u14.stream);
+}
+
+// pack --relief-costs (pipeline::relief_costs): on a real stream with several grids, the reliefs' bits with the
+// prologue and the unattributed bits make the patches section less its termination (24 to 32 bits); every carried
+// vertex is one of its relief's lattice vertices; reliefs with lattice vertices have area and a squared error.
+TEST(ReliefGrids, ReliefCostsAddUpToThePatchesSection) {
+  const Mesh input = load_closed(std::string(PRM_SHARED_MESHES) + "/feline_5k.obj");
+  pipeline::PackOptions o;
+  o.grid_fraction = 0.01;
+  o.adaptive = true;
+  o.adaptive_model = pipeline::PackOptions::AdaptiveModel::curvature;
+  const pipeline::PackResult r = pipeline::pack(input, o);
+  ASSERT_GE(r.report.grid_sizes, 2u);
+  const AabbTree tree(r.repaired ? r.repaired_input : input);
+  const pipeline::ReliefCosts c = pipeline::relief_costs(r.remesh.prm, r.report, tree);
+  ASSERT_EQ(c.reliefs.size(), r.remesh.prm.relief_axis.size());
+  double bits = c.prologue_bits + c.unattributed_bits;
+  uint32_t carried = 0, lattice = 0;
+  std::set<int64_t> grids;
+  for (const pipeline::ReliefCost& rc : c.reliefs) {
+    bits += rc.bits;
+    carried += rc.carried_vertices;
+    lattice += rc.lattice_vertices;
+    EXPECT_LE(rc.carried_vertices, rc.lattice_vertices);
+    if (rc.carried_vertices > 0) EXPECT_GT(rc.bits, 0.0);
+    if (rc.lattice_vertices > 0) grids.insert(rc.grid);
+    if (rc.lattice_vertices > 16) {
+      EXPECT_GT(rc.area, 0.0);
+      EXPECT_GT(rc.msq, 0.0);
+      // The quarters by the faces' own error: increasing, and about averaging to the relief's msq.
+      double mean = 0;
+      for (size_t k = 0; k < rc.msq_quarters.size(); ++k) {
+        if (k > 0) EXPECT_LE(rc.msq_quarters[k - 1], rc.msq_quarters[k]);
+        mean += rc.msq_quarters[k] / rc.msq_quarters.size();
+      }
+      EXPECT_GE(rc.msq_quarters.back(), rc.msq);
+      EXPECT_LE(rc.msq_quarters.front(), rc.msq);
+      EXPECT_NEAR(mean, rc.msq, 0.5 * rc.msq);  // quarters of about equal area (faces are not split)
+    }
+  }
+  EXPECT_GE(grids.size(), 2u);
+  EXPECT_EQ(carried, r.report.patch_vertices);  // every vertex a patch carries is a lattice vertex of a relief
+  EXPECT_LE(lattice, r.report.vertices);
+  const double slack = 8.0 * static_cast<double>(r.report.patch_bytes) - bits;
+  EXPECT_GE(slack, 24.0 - 1e-6);
+  EXPECT_LE(slack, 32.0 + 1e-6);
+  // A report of another stream is refused.
+  codec::EncodeReport other = r.report;
+  other.vertex_patch.pop_back();
+  EXPECT_THROW(pipeline::relief_costs(r.remesh.prm, other, tree), std::invalid_argument);
 }
 
 }  // namespace

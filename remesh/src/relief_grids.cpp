@@ -96,30 +96,46 @@ std::vector<double> allocate_relief_grid_scales(const ReliefDetail& detail, cons
   return scale;
 }
 
-ReliefErrorSample measure_relief_error(const PrmMesh& prm, const AabbTree& input_tree, size_t reliefs, double grid) {
+FaceErrors measure_face_error(const PrmMesh& prm, const AabbTree& input_tree, size_t reliefs) {
   const Mesh& m = prm.mesh;
   const size_t nf = m.triangles.size();
-  std::vector<double> face_area(nf, 0.0), face_sum(nf, 0.0);
-  std::vector<int32_t> face_relief(nf, -1);
-  // Barycentric weights of the seven points.
+  FaceErrors e;
+  e.area.assign(nf, 0.0);
+  e.msq.assign(nf, 0.0);
+  e.sum.assign(nf, 0.0);
+  e.relief.assign(nf, -1);
+  e.input_face.assign(nf, AabbTree::kNoFace);
+  // Barycentric weights of the seven points, the centroid first.
   static constexpr double kPoints[7][3] = {{1 / 3.0, 1 / 3.0, 1 / 3.0}, {0.5, 0.5, 0}, {0, 0.5, 0.5}, {0.5, 0, 0.5},
                                            {2 / 3.0, 1 / 6.0, 1 / 6.0}, {1 / 6.0, 2 / 3.0, 1 / 6.0},
                                            {1 / 6.0, 1 / 6.0, 2 / 3.0}};
   tbb::parallel_for(size_t{0}, nf, [&](size_t f) {
     const Tri& t = m.triangles[f];
-    for (int c = 0; c < 3 && face_relief[f] < 0; ++c)
+    for (int c = 0; c < 3 && e.relief[f] < 0; ++c)
       if (t[c] < prm.vertex_relief.size() && prm.vertex_relief[t[c]] >= 0 &&
           static_cast<size_t>(prm.vertex_relief[t[c]]) < reliefs)
-        face_relief[f] = prm.vertex_relief[t[c]];
-    if (face_relief[f] < 0) return;
+        e.relief[f] = prm.vertex_relief[t[c]];
+    if (e.relief[f] < 0) return;
     const Vec3 &a = m.positions[t[0]], &b = m.positions[t[1]], &c = m.positions[t[2]];
-    face_area[f] = triangle_area(a, b, c);
+    e.area[f] = triangle_area(a, b, c);
     AabbTree::Hit hint = input_tree.closest(a);
+    double sum = 0;
     for (const auto& w : kPoints) {
       input_tree.closest(a * w[0] + b * w[1] + c * w[2], hint);
-      face_sum[f] += hint.distance2;
+      if (&w == &kPoints[0]) e.input_face[f] = hint.face;
+      sum += hint.distance2;
     }
+    e.sum[f] = sum;
+    e.msq[f] = sum / 7.0;
   });
+  return e;
+}
+
+ReliefErrorSample measure_relief_error(const PrmMesh& prm, const AabbTree& input_tree, size_t reliefs, double grid) {
+  const FaceErrors e = measure_face_error(prm, input_tree, reliefs);
+  const size_t nf = e.area.size();
+  const std::vector<double>& face_area = e.area;
+  const std::vector<int32_t>& face_relief = e.relief;
   ReliefErrorSample out;
   out.grid = grid;
   out.area.assign(reliefs, 0.0);
@@ -128,10 +144,30 @@ ReliefErrorSample measure_relief_error(const PrmMesh& prm, const AabbTree& input
     if (face_relief[f] < 0) continue;
     const size_t r = static_cast<size_t>(face_relief[f]);
     out.area[r] += face_area[f];
-    out.msq[r] += face_area[f] * face_sum[f] / 7.0;
+    out.msq[r] += face_area[f] * e.sum[f] / 7.0;  // as before measure_face_error (the --adaptive model's rounding)
   }
   for (size_t r = 0; r < reliefs; ++r)
     if (out.area[r] > 0) out.msq[r] /= out.area[r];
+  // The quarters: each relief's faces by their own msq, cut at every quarter of the relief's area.
+  constexpr int kQ = ReliefErrorSample::kErrorQuarters;
+  std::vector<std::vector<uint32_t>> faces(reliefs);
+  for (size_t f = 0; f < nf; ++f)
+    if (face_relief[f] >= 0 && face_area[f] > 0) faces[static_cast<size_t>(face_relief[f])].push_back(static_cast<uint32_t>(f));
+  out.msq_quarters.assign(reliefs, std::array<double, kQ>{});
+  for (size_t r = 0; r < reliefs; ++r) {
+    std::sort(faces[r].begin(), faces[r].end(),
+              [&](uint32_t x, uint32_t y) { return e.msq[x] < e.msq[y]; });
+    std::array<double, kQ> area{}, sum{};
+    double done = 0;
+    for (uint32_t f : faces[r]) {
+      const int k = std::min(kQ - 1, static_cast<int>(kQ * (done + face_area[f] / 2) / out.area[r]));
+      area[static_cast<size_t>(k)] += face_area[f];
+      sum[static_cast<size_t>(k)] += face_area[f] * e.msq[f];
+      done += face_area[f];
+    }
+    for (int k = 0; k < kQ; ++k)
+      if (area[static_cast<size_t>(k)] > 0) out.msq_quarters[r][static_cast<size_t>(k)] = sum[static_cast<size_t>(k)] / area[static_cast<size_t>(k)];
+  }
   return out;
 }
 

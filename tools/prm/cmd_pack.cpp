@@ -12,12 +12,30 @@
 #include "gltf_commands.h"
 #include "prm_stream_info.h"
 #include "remesher_options.h"
+#include "prm/aabb_tree.h"
 #include "prm/error.h"
 #include "prm/mesh_io.h"
 #include "prm/pipeline/pack.h"
 #include "prm/pipeline/pack_to_bytes.h"
+#include "prm/pipeline/relief_costs.h"
 
 namespace prm::cli {
+namespace {
+
+// --relief-costs (issue 23, pipeline/relief_costs.h): per relief, the patch bits charged to it beside its lattice
+// vertices, area and squared error; measured against what was remeshed (the repaired input when repaired).
+nlohmann::json relief_costs_json(const pipeline::PackResult& r, const Mesh& input) {
+  const AabbTree tree(r.repaired ? r.repaired_input : input);
+  const pipeline::ReliefCosts c = pipeline::relief_costs(r.remesh.prm, r.report, tree);
+  nlohmann::json reliefs = nlohmann::json::array();
+  for (const pipeline::ReliefCost& rc : c.reliefs)
+    reliefs.push_back({{"grid_steps", rc.grid}, {"bits", rc.bits}, {"lattice_vertices", rc.lattice_vertices},
+                       {"carried_vertices", rc.carried_vertices}, {"area", rc.area}, {"msq", rc.msq},
+                       {"msq_quarters", rc.msq_quarters}});
+  return {{"prologue_bits", c.prologue_bits}, {"unattributed_bits", c.unattributed_bits}, {"reliefs", reliefs}};
+}
+
+}  // namespace
 
 void add_pack_command(CLI::App& root) {
   auto* cmd = root.add_subcommand(
@@ -30,7 +48,7 @@ void add_pack_command(CLI::App& root) {
     std::string max_version = "1.5", mode = "auto", adaptive_model = "measured";
     size_t samples = 0, target_bytes = 0;
     bool json = false, no_fit = false, round_heights = false, fallback = false, fill_holes = false, refine = false,
-         adaptive = false;
+         adaptive = false, relief_costs = false;
     double adaptive_exponent = 1.0 / 6.0;
     double error_flip_weight = remesh::kDefaultErrorFlipWeight;
   };
@@ -124,6 +142,10 @@ void add_pack_command(CLI::App& root) {
                   "With --adaptive-model curvature: a relief's grid goes as its mean squared curvature to the minus this power (default "
                   "1/6: RMS error ~ g^2, bytes ~ g^-2)")
       ->check(CLI::Range(0.01, 1.0));
+  cmd->add_flag("--relief-costs", opt->relief_costs,
+                "With --json, a PRM stream: relief_costs, per relief its grid, the patch bits charged to it (each "
+                "patch's header and height bits shared among the reliefs of the vertices it carries), its lattice "
+                "vertices, area and mean squared distance to the input (bench/README.md 'The bound')");
   cmd->add_flag("--round-heights", opt->round_heights,
                 "Round every height to the nearest step (no rate-distortion choice; for comparison)");
   cmd->add_option("--max-version", opt->max_version,
@@ -319,6 +341,7 @@ void add_pack_command(CLI::App& root) {
         j["grid_sizes"] = rep.grid_sizes;  // §8.4.2: 1, or 2..8 with --adaptive
         j["adaptive"] = opt->adaptive;
         if (opt->adaptive) j["adaptive_model"] = opt->adaptive_model;
+        if (opt->relief_costs) j["relief_costs"] = relief_costs_json(r, input);
         j["tau"] = opt->tau;
         j["step"] = r.remesh.prm.frame.step;
         j["remesh_rounds"] = r.remesh_rounds;

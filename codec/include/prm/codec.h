@@ -127,6 +127,19 @@ struct EncodeReport {
   uint32_t grid_sizes = 0;       // §8.4.2 grid sizes the stream holds: 1, or 2..8 with the grid table (format 1.5)
   int height_depth = -1;         // §9.4 0..6 (difference patches), 7 (linear prediction, §9.7); -1: not a PRM stream
   int overlap_depth = -1;        // §9.7.2 with height_depth 7: the self-overlapping patches' difference depth
+  // PRM streams: what the patches section's parts cost (an encoder statistic, not in the stream), in bits of the
+  // range coder's information (32 - log2 Range plus 8 per byte shifted out): the fields and predictor table before
+  // the first patch (§8.4, §9.7.2), then per patch in section order its header (§8.4-§8.4.2) and heights (§9.7.4
+  // Method included) and the vertices whose positions it carries. patch_bytes * 8 exceeds the sum of all of them by
+  // the range coder's termination, 24 to 32 bits (§5.6). vertex_patch: per input vertex, the index of the patch
+  // carrying its position, or UINT32_MAX (irregular vertices, section 2).
+  struct PatchCost {
+    double header_bits = 0, height_bits = 0;
+    uint32_t vertices = 0;
+  };
+  double patch_prologue_bits = 0;
+  std::vector<PatchCost> patch_costs;
+  std::vector<uint32_t> vertex_patch;
   // Decoded vertex k is input vertex vertex_order[k]; decoded triangle k is input triangle triangle_order[k], with
   // its corners rotated so that decoded corner 0 is input corner triangle_rotation[k] (0..2).
   std::vector<uint32_t> vertex_order;

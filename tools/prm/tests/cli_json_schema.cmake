@@ -50,7 +50,9 @@ run_json(reliefs KEYS input output ${counts} seconds ARGS reliefs "${DATA}/cube_
 run_json(remesh KEYS input output ${counts} distance.rms_rel distance.max_rel seconds
          ARGS remesh "${DATA}/cube_quads.obj" -o "${WORK}/cube_prm.ply" --grid-fraction 0.1)
 run_json(pack KEYS input output ${counts} bytes.total bits_per_vertex.total bytes.connectivity distance.rms_rel
-         distance.max_rel seconds n_o n_r boundary_loops_in boundary_loops_out holes_closed boundary_vertices_removed ARGS pack "${DATA}/cube_quads.obj" -o "${WORK}/cube.prm" --grid-fraction 0.1)
+         distance.max_rel seconds n_o n_r boundary_loops_in boundary_loops_out holes_closed boundary_vertices_removed relief_costs.prologue_bits relief_costs.unattributed_bits
+         relief_costs.reliefs.0.bits relief_costs.reliefs.0.msq_quarters
+         ARGS pack "${DATA}/cube_quads.obj" -o "${WORK}/cube.prm" --grid-fraction 0.1 --relief-costs)
 # --mode (issue 22): auto keeps the smaller stream and says why; the 8-vertex cube is coded as it is.
 run_json(pack KEYS mode mode_requested mode_reason candidates.prm.bytes candidates.general.bytes
          candidates.general.bits n_r_over_n_o distance.rms_rel

@@ -5,6 +5,7 @@
 // and the remesher's grid search then scales all grids together until the target error is met.
 #pragma once
 
+#include <array>
 #include <vector>
 
 #include "prm/aabb_tree.h"
@@ -43,7 +44,21 @@ std::vector<double> allocate_relief_grid_scales(const ReliefDetail& detail, cons
 struct ReliefErrorSample {
   double grid = 0;  // model units
   std::vector<double> area, msq;  // per relief id; msq in model units squared
+  // Per relief id: its faces sorted by their own mean squared distance and cut into kErrorQuarters runs of about
+  // equal area (a face is not split), each run's area-weighted msq, lowest first (issue 23's bound on splitting a
+  // relief along its detail, bench/relief_bound.py). Zeros for a relief without faces.
+  static constexpr int kErrorQuarters = 4;
+  std::vector<std::array<double, kErrorQuarters>> msq_quarters;
 };
+// Per face of prm.mesh (measure_relief_error's samples): its relief (-1: no grid vertex of a relief, not sampled),
+// area, mean squared distance of its seven points to the input, and the input face closest to its centroid.
+struct FaceErrors {
+  std::vector<int32_t> relief;
+  std::vector<double> area, msq;
+  std::vector<double> sum;           // the seven squared distances' sum (msq = sum / 7)
+  std::vector<uint32_t> input_face;  // AabbTree::kNoFace when not sampled
+};
+FaceErrors measure_face_error(const PrmMesh& prm, const AabbTree& input_tree, size_t reliefs);
 ReliefErrorSample measure_relief_error(const PrmMesh& prm, const AabbTree& input_tree, size_t reliefs, double grid);
 
 // Equal slope from two samples a (grid g_a) and b (g_b > g_a): per relief, msq_r(g) = msq_r(g_a) (g / g_a)^p_r with
