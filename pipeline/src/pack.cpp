@@ -91,6 +91,9 @@ struct Remeshed {
   // The full / sparse ratio of the last grid measured both ways (1: none was), which scales the lambda
   // bisection's sparse estimates.
   double sparse_bias = 1;
+  // out.remesh.error was measured at full density on out.stream decoded (the kept grid's sparse estimate fell in
+  // kSparseBand): finish_at's check needs no second measurement while the stream stays the search's.
+  bool error_at_full_density = false;
 };
 
 using StopSearch = std::function<bool(int64_t grid, bool met, int64_t next)>;
@@ -154,19 +157,30 @@ Remeshed remesh_at(const SearchContext& ctx, const PackOptions& options, int bit
   // where the full density decides (the sparser samples weigh the vertices more: +0.5% at 4 per face, +4% at 2 on
   // the horse), so that every decision is the one the full density would make.
   double sparse_bias = 1;
-  auto measure = [&](const Mesh& m) {
+  // Per grid measured (remesh::RemeshResult::search): measured at full density on the decoded stream itself, the
+  // mesh finish_at's check would measure (the same stream decoded: the same Metro result, bit for bit).
+  std::vector<bool> decoded_at_full_density;
+  // m: the candidate quantized (or decoded, `decoded`) as the stream will hold it.
+  auto measure = [&](const Mesh& m, bool decoded, const remesh::PrmMesh& prm) {
     remesh::ErrorEstimate e = measure_with(reference, m);
     if (&reference == &ctx.full) return e;
     const bool max_in_band = ro.max_error > 0 && e.max >= kSparseBand[0] * ro.max_error;
     if ((e.rms < kSparseBand[0] * ro.target_error || e.rms > kSparseBand[1] * ro.target_error) && !max_in_band)
       return e;
-    const remesh::ErrorEstimate full = measure_with(ctx.full, m);
+    // EffortPlan::decode_in_band: the stream encoded and decoded, so that its check can reuse this measurement.
+    const bool encode = !decoded && ctx.plan.decode_in_band;
+    const auto full_measure = [&](const Mesh& d) { return measure_with(ctx.full, d); };
+    const remesh::ErrorEstimate full =
+        encode ? encode_and_measure(prm, po, nullptr, nullptr, full_measure) : full_measure(m);
     if (e.rms > 0) sparse_bias = full.rms / e.rms;
+    decoded_at_full_density.back() = decoded || encode;
     return full;
   };
   auto error = [&](const remesh::PrmMesh& prm) {
     ProgressJob::advance_round();
-    if (po.height_lambda > 0) return encode_and_measure(prm, po, nullptr, nullptr, measure);
+    decoded_at_full_density.push_back(false);
+    if (po.height_lambda > 0)
+      return encode_and_measure(prm, po, nullptr, nullptr, [&](const Mesh& m) { return measure(m, true, prm); });
     const Mesh& candidate = prm.mesh;
     Mesh q;
     q.triangles = candidate.triangles;
@@ -175,10 +189,16 @@ Remeshed remesh_at(const SearchContext& ctx, const PackOptions& options, int bit
       for (int a = 0; a < 3; ++a)
         q.positions[v][static_cast<size_t>(a)] =
             frame.to_real(frame.quantize(candidate.positions[v][static_cast<size_t>(a)], a), a);
-    return measure(q);
+    return measure(q, false, prm);
   };
   out.remesh = remesh::remesh(source, ro, error);
   out.seconds_remesh = seconds_since(t0);
+  // The kept grid's measurement (remesh() copies it into out.remesh.error).
+  bool error_at_full_density = false;
+  for (size_t i = 0; i < out.remesh.search.size() && i < decoded_at_full_density.size(); ++i)
+    if (decoded_at_full_density[i] && out.remesh.search[i].grid == out.remesh.prm.lattice.A &&
+        out.remesh.search[i].error.rms == out.remesh.error.rms && out.remesh.search[i].error.max == out.remesh.error.max)
+      error_at_full_density = true;
   out.bits = bits;
   out.step_scale = step_scale;
 
@@ -190,7 +210,7 @@ Remeshed remesh_at(const SearchContext& ctx, const PackOptions& options, int bit
                      encoded.status.message + " (spec §" + encoded.status.spec_section + ")");
   out.stream = std::move(encoded.value);
   out.codec_options = po;
-  return Remeshed{std::move(out), ro.target_error, ro.max_error, sparse_bias};
+  return Remeshed{std::move(out), ro.target_error, ro.max_error, sparse_bias, error_at_full_density};
 }
 
 // The heights of a remeshed attempt: the lambda bisection (its sparse estimates scaled by rm.sparse_bias), then the
@@ -243,6 +263,7 @@ PackResult finish_at(const SearchContext& ctx, const PackOptions& options, Remes
       }
       lo = mid;
       if (stream.size() < out.stream.size()) {
+        rm.error_at_full_density = false;  // another stream
         out.stream = std::move(stream);
         out.report = report;
         out.remesh.error = e;
@@ -268,6 +289,7 @@ PackResult finish_at(const SearchContext& ctx, const PackOptions& options, Remes
                        encoded.status.message + " (spec §" + encoded.status.spec_section + ")");
     out.stream = std::move(encoded.value);
     out.codec_options = rounded;
+    rm.error_at_full_density = false;
     zero_area = zero_area_of(out.stream);
   }
   // The search measured with fewer samples than the report: the chosen stream at full density. Where that misses
@@ -286,10 +308,14 @@ PackResult finish_at(const SearchContext& ctx, const PackOptions& options, Remes
       const remesh::ErrorEstimate e = encode_and_measure(out.remesh.prm, o, report, stream, full, &za);
       return za > 0 ? remesh::ErrorEstimate{HUGE_VAL, HUGE_VAL} : e;
     };
-    const auto decoded = codec::decode(out.stream.data(), out.stream.size());
-    if (!decoded.ok()) throw InputError("the encoder's stream does not decode (a codec bug): " + decoded.status.message);
-    const DistanceReport d = ctx.full.compare(to_mesh(decoded.value));
-    out.remesh.error = remesh::ErrorEstimate{d.rel(d.rms), d.rel(d.max)};
+    // The stream the search measured at full density (the rounded heights, or PackOptions::height_lambda's): its
+    // error is known. Otherwise the chosen stream decoded and measured.
+    if (!rm.error_at_full_density) {
+      const auto decoded = codec::decode(out.stream.data(), out.stream.size());
+      if (!decoded.ok()) throw InputError("the encoder's stream does not decode (a codec bug): " + decoded.status.message);
+      const DistanceReport d = ctx.full.compare(to_mesh(decoded.value));
+      out.remesh.error = remesh::ErrorEstimate{d.rel(d.rms), d.rel(d.max)};
+    }
     bool met = meets(out.remesh.error);
     int k = 0;  // the chosen lambda's index
     while (k < static_cast<int>(std::size(kHeightLambdas)) && kHeightLambdas[k] < out.codec_options.height_lambda) ++k;
@@ -362,7 +388,7 @@ EffortPlan effort_plan(int effort) {
   // from +7.8% to +0.06% against effort 9 for about the same CPU; on a smooth sphere it cost 1.5-5% at three of four
   // targets (bench/README.md "pack effort", eighth round).
   switch (effort) {
-    case 0: p.steps = 1; p.search_samples_per_face = 2; p.lambda_rounds = 1; p.grid_tolerance = 0.15; p.accept_error = 0; break;
+    case 0: p.steps = 1; p.search_samples_per_face = 2; p.lambda_rounds = 1; p.grid_tolerance = 0.15; p.accept_error = 0; p.decode_in_band = true; break;
     case 1: p.steps = 1; p.search_samples_per_face = 2; p.lambda_rounds = 3; p.grid_tolerance = 0.1; p.accept_error = 0.85; break;
     case 2: p.steps = 1; p.search_samples_per_face = 4; p.lambda_rounds = 4; p.grid_tolerance = 0.06; p.accept_error = 0.9; break;
     case 3: p.steps = 1; p.defer_heights = true; p.coarser_step_from_grid = 15; p.search_samples_per_face = 4; p.lambda_rounds = 4; break;

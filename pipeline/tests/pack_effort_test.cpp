@@ -43,6 +43,33 @@ TEST(PackEffort, LevelsOutsideTheRangeAreRefused) {
   EXPECT_EQ(three.coarser_step_from_grid, 15);
 }
 
+// EffortPlan::decode_in_band (effort 0 only): spot's kept grid at 2e-4 has a sparse estimate near the target, so the
+// search measured its stream at full density and the check reused that measurement. The reported error must be,
+// bit for bit, the full-density Metro of the decoded stream (the candidate quantized instead of decoded gave a
+// max 0.4% away: its triangles are sampled in another order).
+TEST(PackEffort, EffortZeroReusesTheSearchsMeasurementOfTheStreamExactly) {
+  for (int effort = prm::pipeline::kMinEffort; effort <= prm::pipeline::kMaxEffort; ++effort)
+    EXPECT_EQ(prm::pipeline::effort_plan(effort).decode_in_band, effort == 0) << "effort " << effort;
+  const prm::Mesh input = prm::read_mesh(std::string(PRM_SHARED_MESHES) + "/spot.obj");
+  PackOptions o;
+  o.target_error = 2e-4;
+  o.effort = 0;
+  o.mode = prm::pipeline::PackMode::prm;
+  const prm::pipeline::PackResult r = prm::pipeline::pack(input, o);
+  ASSERT_FALSE(r.remesh.search.empty());
+  // The reuse happened: the kept grid's search error is the reported one (a sparse estimate would differ).
+  const prm::remesh::SearchStep& kept = r.remesh.search.back();
+  EXPECT_EQ(kept.error.rms, r.remesh.error.rms);
+  EXPECT_EQ(kept.error.max, r.remesh.error.max);
+  EXPECT_EQ(r.codec_options.height_lambda, 0.0);
+  const auto decoded = prm::codec::decode(r.stream.data(), r.stream.size());
+  ASSERT_TRUE(decoded.ok()) << decoded.status.message;
+  const prm::DistanceReport d = prm::metro_distance(input, prm::pipeline::to_mesh(decoded.value));
+  EXPECT_EQ(r.remesh.error.rms, d.rel(d.rms));
+  EXPECT_EQ(r.remesh.error.max, d.rel(d.max));
+  EXPECT_LE(d.rel(d.rms), prm::pipeline::kQuantizationMargin * o.target_error);
+}
+
 // EffortPlan::coarser_step_from_grid: on a smooth sphere the default's first grid meets 5e-4 with room to spare and
 // its search would go on to a grid of more than 15 steps (26 at 9 bits), so effort 3 searches the next coarser step
 // instead. Both attempts are listed; the kept one is an eighth of an octave coarser and smaller, and meets the target.

@@ -149,6 +149,10 @@ struct EffortPlan {
   // its fewest bits (general_floor_bytes, one encode) is smaller than the PRM stream; otherwise it is not tried (the
   // report says so). false: the general candidate is always made, first.
   bool general_floor_check = false;
+  // A grid whose sparse estimate falls near the target is measured again at full density; true: on its stream
+  // (rounded heights) encoded and decoded rather than on the candidate quantized, one encode more, so that the kept
+  // grid's full-density check reuses that measurement when the stream stays the rounded one.
+  bool decode_in_band = false;
 };
 EffortPlan effort_plan(int effort);  // throws std::invalid_argument outside kMinEffort..kMaxEffort
 constexpr double kHeightTolerance = 1.5;
