@@ -266,7 +266,9 @@ TEST(ReliefGrids, ReliefCostsAddUpToThePatchesSection) {
     carried += rc.carried_vertices;
     lattice += rc.lattice_vertices;
     EXPECT_LE(rc.carried_vertices, rc.lattice_vertices);
-    if (rc.carried_vertices > 0) EXPECT_GT(rc.bits, 0.0);
+    if (rc.carried_vertices > 0) {
+      EXPECT_GT(rc.bits, 0.0);
+    }
     if (rc.lattice_vertices > 0) grids.insert(rc.grid);
     if (rc.lattice_vertices > 16) {
       EXPECT_GT(rc.area, 0.0);
@@ -274,7 +276,9 @@ TEST(ReliefGrids, ReliefCostsAddUpToThePatchesSection) {
       // The quarters by the faces' own error: increasing, and about averaging to the relief's msq.
       double mean = 0;
       for (size_t k = 0; k < rc.msq_quarters.size(); ++k) {
-        if (k > 0) EXPECT_LE(rc.msq_quarters[k - 1], rc.msq_quarters[k]);
+        if (k > 0) {
+          EXPECT_LE(rc.msq_quarters[k - 1], rc.msq_quarters[k]);
+        }
         mean += rc.msq_quarters[k] / rc.msq_quarters.size();
       }
       EXPECT_GE(rc.msq_quarters.back(), rc.msq);
