@@ -52,11 +52,12 @@ const char* pack_mode_name(PackMode mode);  // "prm", "general", "auto" (the --m
 // mesh strays more than kRefineShare x max_error from the input, and the search needs the decoded mesh's max within
 // max_error. Without it, refine_deviations asks for the refinement at kLocalRefineShare x kDefaultMaxErrorPerTarget x
 // target_error; it is off by default: measured in bench/README.md "Worst-case error" (h22max6) at 2e-4, it takes
-// the horse from 25x the target to 8.06x (+5.5% bytes), venus from 16x to 7.1x (+4.6%), the feline from 19x to 7.1x
-// (+1.0%), bunny_zipper from 14x to 7.1x (+4.2%), the camel from 29x to 7.7x (-2.8%), bunny00 from 10.2x to 7.5x
-// (+1.0%) and the armadillo to 7.2x (+0.3%): 8x at +5% or less on all but the horse. The search then runs unrefined
-// and refines only the grid it chooses (RemeshOptions::refine_last): 6-11 s CPU on the paper's models (issue 21:
-// 10 s; the feline 10.5 s). With max_error the refinement runs without its notch steps (RemeshOptions::refine_notches), as on
+// the horse from 25x the target to 7.6x (+5.9% bytes), venus from 16x to 7.5x (+4.7%), the feline from 19x to 7.4x
+// (+1.0%), bunny_zipper from 14x to 7.5x (+4.6%), the camel from 29x to 7.5x (+1.0%), bunny00 from 10.2x to 7.4x
+// (+1.5%) and the armadillo to 7.0x (-1.0%): 8x at +5% or less on all but the horse. The search then runs unrefined
+// and refines only the grid it chooses (RemeshOptions::refine_last): 7-11 s CPU on the paper's models (issue 21:
+// 10 s; the feline 11.4 s). When the heights' lambda gives a stream over 8x the target, a smaller one that meets both
+// is taken (finish_at). With max_error the refinement runs without its notch steps (RemeshOptions::refine_notches), as on
 // main before them.
 constexpr double kDefaultMaxErrorPerTarget = 8;
 constexpr double kRefineShare = 0.6;
