@@ -332,6 +332,26 @@ PackResult finish_at(const SearchContext& ctx, const PackOptions& options, Remes
       out.remesh.error = e;
       out.codec_options = o;
     }
+    // --local-refinement (no max_error): the heights' freedom must not undo the refinement (h22max6: a variant's venus
+    // was 1.37e-3 with rounded heights and 1.65e-3 decoded). When the stream's max passes kDefaultMaxErrorPerTarget x
+    // the target, the largest smaller lambda (then rounding) whose stream meets both is taken; with none, the stream
+    // stays (that max is the refinement's aim, not a constraint of the search: `measured` is the RMS's).
+    const double aim = kDefaultMaxErrorPerTarget * options.target_error;
+    if (met && options.refine_deviations && !(options.max_error > 0) && options.target_error > 0 &&
+        out.remesh.error.max > aim)
+      for (int j = k - 1; out.codec_options.height_lambda > 0 && j >= -1; --j) {
+        codec::PrmOptions o = out.codec_options;
+        o.height_lambda = j >= 0 ? kHeightLambdas[j] : 0;
+        std::vector<uint8_t> stream;
+        codec::EncodeReport report;
+        const remesh::ErrorEstimate e = full_error(o, &stream, &report);
+        if (!meets(e) || e.max > aim) continue;
+        out.stream = std::move(stream);
+        out.report = report;
+        out.remesh.error = e;
+        out.codec_options = o;
+        break;
+      }
     if (measured) *measured = met;
   }
   if (zero_area > 0)

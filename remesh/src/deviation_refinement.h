@@ -70,8 +70,8 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
                                            std::vector<double>* face_deviation2 = nullptr);
 
 // After the refinement: the vertices near places straying more than 0.75x `bound` (model units) are put on the way of
-// rounding them to prm.frame's step whose triangles stray least from the input (the stream holds rounded
-// coordinates; a lattice coordinate stays). Returns how many were put elsewhere than their nearest rounding.
+// rounding them to prm.frame's step whose triangles and the vertex itself stray least from the input (the stream
+// holds rounded coordinates; a lattice coordinate stays). Returns how many were put elsewhere than their nearest rounding.
 // face_deviation2: refine_deviations' figures for prm's faces (null or another size: measured here).
 size_t round_towards_input(PrmMesh& prm, const Mesh& input, const AabbTree& input_tree, double bound,
                            const std::vector<double>* face_deviation2 = nullptr);

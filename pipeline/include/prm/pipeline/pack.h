@@ -51,12 +51,13 @@ const char* pack_mode_name(PackMode mode);  // "prm", "general", "auto" (the --m
 // The worst case (issue 22): with PackOptions::max_error, the remesher's local refinement inserts vertices where the
 // mesh strays more than kRefineShare x max_error from the input, and the search needs the decoded mesh's max within
 // max_error. Without it, refine_deviations asks for the refinement at kLocalRefineShare x kDefaultMaxErrorPerTarget x
-// target_error; it is off by default: measured in bench/README.md "Worst-case error" (h22max5) at 2e-4, it takes
-// the horse from 25x the target to 8.1x (+6.2% bytes), venus from 16x to 7.3x (+4.7%), the feline from 19x to 8.02x
-// (+1.4%), bunny_zipper from 14x to 7.7x (+4.1%), the camel from 29x to 7.7x (-0.8%), bunny00 from 10.5x to 7.3x
-// (+2.7%) and the armadillo to 7.2x (-1.0%): 8x at +5% or less on all but the horse and the feline. The search then
-// runs unrefined and refines only the grid it chooses (RemeshOptions::refine_last): 6-11 s CPU on the paper's models
-// (issue 21: 10 s). With max_error the refinement runs without its notch steps (RemeshOptions::refine_notches), as on
+// target_error; it is off by default: measured in bench/README.md "Worst-case error" (h22max6) at 2e-4, it takes
+// the horse from 25x the target to 7.6x (+5.9% bytes), venus from 16x to 7.5x (+4.7%), the feline from 19x to 7.4x
+// (+1.0%), bunny_zipper from 14x to 7.5x (+4.6%), the camel from 29x to 7.5x (+1.0%), bunny00 from 10.2x to 7.4x
+// (+1.5%) and the armadillo to 7.0x (-1.0%): 8x at +5% or less on all but the horse. The search then runs unrefined
+// and refines only the grid it chooses (RemeshOptions::refine_last): 7-11 s CPU on the paper's models (issue 21:
+// 10 s; the feline 11.4 s). When the heights' lambda gives a stream over 8x the target, a smaller one that meets both
+// is taken (finish_at). With max_error the refinement runs without its notch steps (RemeshOptions::refine_notches), as on
 // main before them.
 constexpr double kDefaultMaxErrorPerTarget = 8;
 constexpr double kRefineShare = 0.6;
