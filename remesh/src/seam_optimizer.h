@@ -3,6 +3,7 @@
 // it implements. run() (seam_optimization.cpp) calls them in order.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -83,7 +84,9 @@ class SeamOptimizer {
 
   // error_flips.cpp (ours): irregular edges flipped where that brings the surface closer to the input.
   // `hint`: the last answer of a nearby query (AabbTree's hint), updated; the result does not depend on it.
-  double triangle_error(const Vec3& a, const Vec3& b, const Vec3& c, AabbTree::Hit& hint) const;
+  // With `stop` finite, returns early, a value whose sum with `base` is >= stop, once the full error's would be.
+  double triangle_error(const Vec3& a, const Vec3& b, const Vec3& c, AabbTree::Hit& hint, double base = 0,
+                        double stop = HUGE_VAL) const;
   bool try_error_flip(EH e, double error_unit, Quad& q);
   bool grid_face(HH h) const;
   bool touches_grid_face(EH e) const;
