@@ -10,6 +10,7 @@
 
 #include "openmesh_queries.h"
 #include "seam_optimization.h"
+#include "triangle_answer_memo.h"
 
 namespace prm::remesh {
 
@@ -40,6 +41,9 @@ class SeamOptimizer {
 
   // seam_optimization.cpp: the moves several passes try.
   bool collapse_ok(HH h);
+  // triangle_ok(y, a, b) at the vertices' data, remembered in collapse_memo_ while remember_collapses_ is on:
+  // during collapse_seam_vertices(), where no vertex's position, source_face or on_input changes.
+  bool collapsed_triangle_ok(VH y, VH a, VH b);
   // An open surface keeps its boundary where it is: no collapse removes a vertex of the mesh boundary (the input's
   // boundary, refined by the grid crossings; every other edge has two faces after the loop fill).
   bool moves_boundary(HH h) const { return mesh_.is_boundary(mesh_.from_vertex_handle(h)); }
@@ -111,6 +115,8 @@ class SeamOptimizer {
     } read[3];
   };
   std::vector<FaceOkMemo> face_ok_memo_;
+  bool remember_collapses_ = false;
+  TriangleAnswerMemo collapse_memo_;
   // triangle_ok's last nearest input face: one of the faces whose exact distance bounds the next search (the
   // answer does not depend on it).
   mutable int32_t last_nearest_face_ = -1;
