@@ -22,18 +22,23 @@ constexpr double kErrorFlipGain = 0.1;
 
 // Squared distance to the input integrated over a triangle: seven samples, each weighted by a seventh of
 // twice the area. The hint only bounds the searches (the distance is the smallest over the input's triangles
-// whatever it is): the callers carry one through neighbouring triangles.
-double SeamOptimizer::triangle_error(const Vec3& a, const Vec3& b, const Vec3& c, AabbTree::Hit& hint) const {
+// whatever it is): the callers carry one through neighbouring triangles. With `stop` finite, returns as soon as
+// base + (the error so far) >= stop, with the error so far: every sample adds a distance >= 0 and rounding is
+// monotone, so then base + (the full error) >= stop as well.
+double SeamOptimizer::triangle_error(const Vec3& a, const Vec3& b, const Vec3& c, AabbTree::Hit& hint,
+                                     double base, double stop) const {
   static constexpr double kSamples[7][3] = {{1.0 / 3, 1.0 / 3, 1.0 / 3},   {2.0 / 3, 1.0 / 6, 1.0 / 6},
                                             {1.0 / 6, 2.0 / 3, 1.0 / 6},   {1.0 / 6, 1.0 / 6, 2.0 / 3},
                                             {1.0 / 6, 5.0 / 12, 5.0 / 12}, {5.0 / 12, 1.0 / 6, 5.0 / 12},
                                             {5.0 / 12, 5.0 / 12, 1.0 / 6}};
+  const double area = norm(cross(b - a, c - a));
   double sum = 0;
   for (const auto& w : kSamples) {
     tree_.closest(a * w[0] + b * w[1] + c * w[2], hint);
     if (hint.found()) sum += hint.distance2;
+    if (base + sum * area / 7.0 >= stop) break;
   }
-  return sum * norm(cross(b - a, c - a)) / 7.0;
+  return sum * area / 7.0;
 }
 
 // `q`: on success, the quad whose diagonal was flipped.
@@ -44,9 +49,13 @@ bool SeamOptimizer::try_error_flip(EH e, double error_unit, Quad& q) {
   AabbTree::Hit hint;  // through the quad's four triangles
   const double before =
       triangle_error(pos(q.a), pos(q.b), pos(q.c), hint) + triangle_error(pos(q.b), pos(q.a), pos(q.d), hint);
-  const double after =
-      triangle_error(pos(q.c), pos(q.a), pos(q.d), hint) + triangle_error(pos(q.d), pos(q.b), pos(q.c), hint);
-  if (!(after < before * (1.0 - kErrorFlipGain))) return false;
+  // The flip needs after < limit. The sum after stops once it reaches the limit (triangle_error's `stop`): the
+  // full sum would reach it too, so the answer is the one of the full sums.
+  const double limit = before * (1.0 - kErrorFlipGain);
+  const double after_1 = triangle_error(pos(q.c), pos(q.a), pos(q.d), hint, 0, limit);
+  if (!(after_1 < limit)) return false;
+  const double after = after_1 + triangle_error(pos(q.d), pos(q.b), pos(q.c), hint, after_1, limit);
+  if (!(after < limit)) return false;
   auto dev = [](int v) { return (v - 6) * (v - 6); };
   const int vc = valence(mesh_, q.c), vd = valence(mesh_, q.d);
   const int grow =

@@ -90,6 +90,9 @@ size_t SeamOptimizer::collapse_seam_vertices() {
     if (!mv(x).lattice && best_lattice_target(x, h, c))
       pq.push({c, x.idx(), mesh_.to_vertex_handle(h).idx()});
   };
+  // Only the connectivity changes in this pass (the vertices keep their data): a triangle's test is remembered
+  // until the pass ends.
+  remember_collapses_ = true;
   for (auto v : mesh_.vertices()) push_best(v);
   size_t count = 0;
   while (!pq.empty()) {
@@ -106,6 +109,8 @@ size_t SeamOptimizer::collapse_seam_vertices() {
     ++count;
     for (auto w : mesh_.vv_range(y)) push_best(w);
   }
+  remember_collapses_ = false;
+  collapse_memo_.clear();
   return count;
 }
 

@@ -60,14 +60,22 @@ SeamStats SeamOptimizer::run() {
 bool SeamOptimizer::collapse_ok(HH h) {
   if (!is_collapse_ok(mesh_, h) || moves_boundary(h)) return false;
   const VH x = mesh_.from_vertex_handle(h), y = mesh_.to_vertex_handle(h);
-  const Vec3 py = pos(y);
   for (auto oh : mesh_.voh_range(x)) {
     if (mesh_.is_boundary(oh)) continue;
     const VH a = mesh_.to_vertex_handle(oh), b = mesh_.to_vertex_handle(mesh_.next_halfedge_handle(oh));
     if (a == y || b == y) continue;
-    if (!triangle_ok(y, a, b, py, pos(a), pos(b))) return false;
+    if (!collapsed_triangle_ok(y, a, b)) return false;
   }
   return true;
+}
+
+bool SeamOptimizer::collapsed_triangle_ok(VH y, VH a, VH b) {
+  if (!remember_collapses_) return triangle_ok(y, a, b, pos(y), pos(a), pos(b));
+  const int known = collapse_memo_.find(y.idx(), a.idx(), b.idx());
+  if (known >= 0) return known == 1;
+  const bool ok = triangle_ok(y, a, b, pos(y), pos(a), pos(b));
+  collapse_memo_.add(y.idx(), a.idx(), b.idx(), ok);
+  return ok;
 }
 
 bool SeamOptimizer::joins_reliefs(EH e) const {

@@ -3,12 +3,14 @@
 // it implements. run() (seam_optimization.cpp) calls them in order.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
 
 #include "openmesh_queries.h"
 #include "seam_optimization.h"
+#include "triangle_answer_memo.h"
 
 namespace prm::remesh {
 
@@ -31,6 +33,7 @@ class SeamOptimizer {
 
   // triangle_validity.cpp: paper §2.4's test, kept by every pass: not zero-area, not flipped.
   bool triangle_ok(VH a, VH b, VH c, const Vec3& pa, const Vec3& pb, const Vec3& pc) const;
+  AabbTree::Hit input_face_hit(const Vec3& p, uint32_t f) const;
   // triangle_ok of a face's vertices in OpenMesh's order, remembered per face with what it read: those
   // vertices, their positions, source_face and on_input. The scans of remove_bad_triangles() and the final
   // count compute it again only for the faces where any of these changed (the answer is a function of them).
@@ -38,6 +41,9 @@ class SeamOptimizer {
 
   // seam_optimization.cpp: the moves several passes try.
   bool collapse_ok(HH h);
+  // triangle_ok(y, a, b) at the vertices' data, remembered in collapse_memo_ while remember_collapses_ is on:
+  // during collapse_seam_vertices(), where no vertex's position, source_face or on_input changes.
+  bool collapsed_triangle_ok(VH y, VH a, VH b);
   // An open surface keeps its boundary where it is: no collapse removes a vertex of the mesh boundary (the input's
   // boundary, refined by the grid crossings; every other edge has two faces after the loop fill).
   bool moves_boundary(HH h) const { return mesh_.is_boundary(mesh_.from_vertex_handle(h)); }
@@ -82,7 +88,9 @@ class SeamOptimizer {
 
   // error_flips.cpp (ours): irregular edges flipped where that brings the surface closer to the input.
   // `hint`: the last answer of a nearby query (AabbTree's hint), updated; the result does not depend on it.
-  double triangle_error(const Vec3& a, const Vec3& b, const Vec3& c, AabbTree::Hit& hint) const;
+  // With `stop` finite, returns early, a value whose sum with `base` is >= stop, once the full error's would be.
+  double triangle_error(const Vec3& a, const Vec3& b, const Vec3& c, AabbTree::Hit& hint, double base = 0,
+                        double stop = HUGE_VAL) const;
   bool try_error_flip(EH e, double error_unit, Quad& q);
   bool grid_face(HH h) const;
   bool touches_grid_face(EH e) const;
@@ -107,6 +115,11 @@ class SeamOptimizer {
     } read[3];
   };
   std::vector<FaceOkMemo> face_ok_memo_;
+  bool remember_collapses_ = false;
+  TriangleAnswerMemo collapse_memo_;
+  // triangle_ok's last nearest input face: one of the faces whose exact distance bounds the next search (the
+  // answer does not depend on it).
+  mutable int32_t last_nearest_face_ = -1;
 };
 
 }  // namespace prm::remesh
