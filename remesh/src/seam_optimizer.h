@@ -33,7 +33,6 @@ class SeamOptimizer {
 
   // triangle_validity.cpp: paper §2.4's test, kept by every pass: not zero-area, not flipped.
   bool triangle_ok(VH a, VH b, VH c, const Vec3& pa, const Vec3& pb, const Vec3& pc) const;
-  AabbTree::Hit input_face_hit(const Vec3& p, uint32_t f) const;
   // triangle_ok of a face's vertices in OpenMesh's order, remembered per face with what it read: those
   // vertices, their positions, source_face and on_input. The scans of remove_bad_triangles() and the final
   // count compute it again only for the faces where any of these changed (the answer is a function of them).
@@ -117,9 +116,6 @@ class SeamOptimizer {
   std::vector<FaceOkMemo> face_ok_memo_;
   bool remember_collapses_ = false;
   TriangleAnswerMemo collapse_memo_;
-  // triangle_ok's last nearest input face: one of the faces whose exact distance bounds the next search (the
-  // answer does not depend on it).
-  mutable int32_t last_nearest_face_ = -1;
 };
 
 }  // namespace prm::remesh

@@ -1,8 +1,6 @@
 // Paper §2.4: the test every pass of the merge stage keeps: a triangle is not zero-area and not flipped (its
 // normal within the allowed angle of the input's nearby normal).
 #include <cmath>
-#include <algorithm>
-#include <cstdlib>
 #include <cstring>
 
 #include "prm/point_triangle_distance.h"
@@ -14,18 +12,6 @@ namespace prm::remesh {
 // Not zero-area, and not flipped: within the allowed angle of the normal of the input face nearest to its
 // centroid (issue 4's definition; where the input folds, as a centroid fan over a non-planar hole does, the
 // input faces at its corners may face both ways, and only the nearest one says which way is out).
-// The closest point of input face f to p as the tree's searches compute it: the tree holds the input's
-// coordinates exactly and each triangle's corners in the input's order.
-AabbTree::Hit SeamOptimizer::input_face_hit(const Vec3& p, uint32_t f) const {
-  AabbTree::Hit hit;
-  if (f >= input_.triangles.size()) return hit;
-  const Tri& t = input_.triangles[f];
-  hit.point = closest_point_on_triangle(p, input_.positions[t[0]], input_.positions[t[1]], input_.positions[t[2]]);
-  hit.distance2 = norm2(p - hit.point);
-  hit.face = f;
-  return hit;
-}
-
 bool SeamOptimizer::triangle_ok(VH a, VH b, VH c, const Vec3& pa, const Vec3& pb, const Vec3& pc) const {
   const Vec3 n = cross(pb - pa, pc - pa);
   const double n2 = norm2(n);
@@ -45,34 +31,7 @@ bool SeamOptimizer::triangle_ok(VH a, VH b, VH c, const Vec3& pa, const Vec3& pb
       hit.face = static_cast<uint32_t>(mv(v).source_face);
     }
   }
-  // closest(centroid, hit) would search below the exact distance d_F of the hint's face F and keep F when no face
-  // is strictly nearer. The same answer from a tighter start bound: the centroid's exact distance (as the search
-  // computes it) to a few other faces likely nearest (the other on-input corners' source faces, the last answer),
-  // raised by a relative 1e-9 and one ulp, so that every face at the nearest distance m < d_F lies strictly under
-  // the bound, as under d_F. The search then visits those faces in the same depth-first order and returns the
-  // first of them, as the search below d_F does; when m == d_F, F is kept as before. bench/README.md, tenth round.
-#ifdef PRM_SEAM_CHECK_HINTS
-  AabbTree::Hit before = hit;
-  tree_.closest(centroid, before);
-#endif
-  const AabbTree::Hit hinted = hit.found() ? input_face_hit(centroid, hit.face) : AabbTree::Hit{};
-  double bound = hinted.distance2;  // infinity without a hint, as an unbounded search
-  auto tighten = [&](int32_t face) {
-    if (face < 0 || (hinted.found() && static_cast<uint32_t>(face) == hinted.face)) return;
-    const AabbTree::Hit at = input_face_hit(centroid, static_cast<uint32_t>(face));
-    if (at.found()) bound = std::min(bound, std::nextafter(at.distance2 * (1 + 1e-9), HUGE_VAL));
-  };
-  for (VH v : {a, b, c})
-    if (mv(v).on_input) tighten(mv(v).source_face);
-  tighten(last_nearest_face_);
-  hit = tree_.closest(centroid, bound);
-  if (hinted.found() && (!hit.found() || !(hit.distance2 < hinted.distance2))) hit = hinted;
-#ifdef PRM_SEAM_CHECK_HINTS
-  if (before.face != hit.face || std::memcmp(&before.point, &hit.point, sizeof hit.point) != 0 ||
-      std::memcmp(&before.distance2, &hit.distance2, sizeof hit.distance2) != 0)
-    std::abort();
-#endif
-  if (hit.found()) last_nearest_face_ = static_cast<int32_t>(hit.face);
+  tree_.closest(centroid, hit);
   if (!hit.found() || !(dot(n, normals_[hit.face]) > limit)) return false;
   // Where the nearest input point lies on an edge or a corner of its face (a crease, the fold of a hole's
   // fan), several input faces are nearest: the triangle must face the way of every one of them, so that the
