@@ -20,6 +20,7 @@
 #include "prm/pipeline/pack_general.h"
 #include "prm/remesh/lattice.h"
 #include "prm/remesh/relief_grids.h"
+#include "height_guard.h"
 
 namespace prm::pipeline {
 
@@ -337,21 +338,22 @@ PackResult finish_at(const SearchContext& ctx, const PackOptions& options, Remes
     // the target, the largest smaller lambda (then rounding) whose stream meets both is taken; with none, the stream
     // stays (that max is the refinement's aim, not a constraint of the search: `measured` is the RMS's).
     const double aim = kDefaultMaxErrorPerTarget * options.target_error;
+    // At most kHeightGuardTries lambdas, then rounding (height_guard.h).
     if (met && options.refine_deviations && !(options.max_error > 0) && options.target_error > 0 &&
-        out.remesh.error.max > aim)
-      for (int j = k - 1; out.codec_options.height_lambda > 0 && j >= -1; --j) {
+        out.remesh.error.max > aim && out.codec_options.height_lambda > 0)
+      height_guard_choice(k, [&](int j) {
         codec::PrmOptions o = out.codec_options;
         o.height_lambda = j >= 0 ? kHeightLambdas[j] : 0;
         std::vector<uint8_t> stream;
         codec::EncodeReport report;
         const remesh::ErrorEstimate e = full_error(o, &stream, &report);
-        if (!meets(e) || e.max > aim) continue;
+        if (!meets(e) || e.max > aim) return false;
         out.stream = std::move(stream);
         out.report = report;
         out.remesh.error = e;
         out.codec_options = o;
-        break;
-      }
+        return true;
+      });
     if (measured) *measured = met;
   }
   if (zero_area > 0)

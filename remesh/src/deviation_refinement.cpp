@@ -686,7 +686,7 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
       for_each_probe(a, b, c, options.thin_sheets && options.dense_probes, options.max_deviation, visit);
       // Near the bound, twice as fine (h22max6: the horse's worst place, 1.61e-3 of the diagonal at a 122-degree
       // crease, lay between the probes of a face whose 6-division grid found 0.99x the bound; 40 divisions, 1.2x).
-      if (options.thin_sheets && options.dense_probes && probe_hit[f].found() &&
+      if (options.thin_sheets && options.dense_probes && options.fine_probes && probe_hit[f].found() &&
           probe_hit[f].distance2 > kFineProbeShare * kFineProbeShare * bound2 && probe_hit[f].distance2 <= bound2)
         for_each_grid_point(a, b, c, fine_grid_divisions(a, b, c, options.max_deviation), visit);
     });

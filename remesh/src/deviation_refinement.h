@@ -51,6 +51,9 @@ struct DeviationRefinementOptions {
   // Every input triangle is probed for in>pr in the first round (not only those with a vertex near the bound), and
   // again when its worst probe comes near the bound or its closest faces change (h22max5: bunny_zipper).
   bool all_input_faces = true;
+  // A mesh triangle whose dense probes come within 0.9x the bound is probed again on a grid twice as fine (needs
+  // dense_probes; h22max6: the horse's worst place lay between the probes of a face at 0.99x the bound).
+  bool fine_probes = true;
 };
 
 struct DeviationRefinementStats {

@@ -291,4 +291,47 @@ TEST(DeviationRefinement, RoundingCountsTheVertexItself) {
   EXPECT_LT(d, 0.01);
 }
 
+// fine_probes (h22max6): the horse's worst place lay between the dense probes of a face that came to 0.99x the bound.
+// Here one mesh triangle (legs 5.5, bound 1: 8 divisions a side, a probe every 0.6875 along a leg) lies 0.97 above
+// tiny input triangles, one under each of its probes and corners: every probe is 0.97 from the input, but a point
+// halfway between two probes along a leg is 1.03 from it. Only the grid twice as fine (16 divisions) sees that point;
+// without it the refinement finds nothing to do.
+TEST(DeviationRefinement, FinerProbesSeeAPlaceBetweenTheProbes) {
+  const double leg = 5.5, depth = 0.97, bound = 1.0, tiny = 0.005;
+  const int n = 8;
+  Mesh input;
+  for (int p = 0; p <= n; ++p)
+    for (int q = 0; p + q <= n; ++q) {
+      const Vec3 c{leg * p / n, leg * q / n, -depth};
+      const uint32_t a = static_cast<uint32_t>(input.positions.size());
+      input.positions.push_back(c);
+      input.positions.push_back(c + Vec3{tiny, 0, 0});
+      input.positions.push_back(c + Vec3{0, tiny, 0});
+      input.triangles.push_back({a, a + 1, a + 2});
+    }
+  const AabbTree tree(input);
+  for (const bool fine : {true, false}) {
+    PrmMesh prm;
+    prm.mesh.positions = {{0, 0, 0}, {leg, 0, 0}, {0, leg, 0}};
+    prm.mesh.triangles = {{0, 1, 2}};
+    prm.vertex_relief.assign(3, -1);
+    prm.lattice_i.assign(3, 0);
+    prm.lattice_j.assign(3, 0);
+    DeviationRefinementOptions o;
+    o.max_deviation = bound;
+    o.max_insert_share = 1.0;  // of 3 vertices
+    o.fine_probes = fine;
+    const DeviationRefinementStats st = refine_deviations(prm, input, tree, o);
+    const size_t acted = st.inserted + st.moved + st.flipped + st.refused;
+    std::printf("fine_probes %d: %zu inserted, %zu moved, %zu flipped, %zu refused, %zu rounds\n", fine, st.inserted,
+                st.moved, st.flipped, st.refused, st.rounds);
+    if (fine) {
+      EXPECT_GE(acted, 1u);
+    } else {
+      EXPECT_EQ(acted, 0u);
+      EXPECT_EQ(prm.mesh.positions.size(), 3u);
+    }
+  }
+}
+
 }  // namespace prm::remesh

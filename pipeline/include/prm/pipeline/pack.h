@@ -56,8 +56,9 @@ const char* pack_mode_name(PackMode mode);  // "prm", "general", "auto" (the --m
 // (+1.0%), bunny_zipper from 14x to 7.5x (+4.6%), the camel from 29x to 7.5x (+1.0%), bunny00 from 10.2x to 7.4x
 // (+1.5%) and the armadillo to 7.0x (-1.0%): 8x at +5% or less on all but the horse. The search then runs unrefined
 // and refines only the grid it chooses (RemeshOptions::refine_last): 7-11 s CPU on the paper's models (issue 21:
-// 10 s; the feline 11.4 s). When the heights' lambda gives a stream over 8x the target, a smaller one that meets both
-// is taken (finish_at). With max_error the refinement runs without its notch steps (RemeshOptions::refine_notches), as on
+// 10 s; the feline 11.4 s there, 9.3-10.0 s in h22max7's runs). When the heights' lambda gives a stream over 8x the
+// target, a smaller one that meets both is taken (finish_at; at most kHeightGuardTries of them, then the rounded
+// heights: pipeline/src/height_guard.h). With max_error the refinement runs without its notch steps (RemeshOptions::refine_notches), as on
 // main before them.
 constexpr double kDefaultMaxErrorPerTarget = 8;
 constexpr double kRefineShare = 0.6;
