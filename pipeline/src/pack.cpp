@@ -125,6 +125,8 @@ Remeshed remesh_at(const SearchContext& ctx, const PackOptions& options, int bit
   ro.parallel = options.parallel;
   ro.fit_heights = options.fit_heights;
   ro.error_flip_weight = options.error_flip_weight;
+  ro.error_unit_stride = ctx.plan.error_unit_stride;
+  ro.error_samples = ctx.plan.error_samples;
   ro.grid_size = options.grid_size;
   ro.grid_fraction = options.grid_fraction;
   ro.initial_grid_size = initial_grid;
@@ -222,13 +224,17 @@ PackResult finish_at(const SearchContext& ctx, const PackOptions& options, Remes
   const codec::PrmOptions po = out.codec_options;
   const int bits = out.bits;
   const double step_scale = out.step_scale;
+  // EffortPlan::lambda_full_density: the lambda rounds measure at full density, so that the check reuses it.
+  const bool lambda_full = ctx.plan.lambda_full_density;
   auto measure = [&](const Mesh& m) {
+    if (lambda_full) return measure_with(ctx.full, m);
     remesh::ErrorEstimate e = measure_with(ctx.search, m);
     if (&ctx.search != &ctx.full) e.rms *= rm.sparse_bias;
     return e;
   };
   // The error left below the target buys smaller residuals: the largest lambda that still meets it.
-  if (options.optimize_heights && options.height_lambda <= 0 && options.target_error > 0) {
+  if (options.optimize_heights && options.height_lambda <= 0 && options.target_error > 0 &&
+      !(ctx.plan.lambda_below > 0 && out.remesh.error.rms >= ctx.plan.lambda_below * rm.target)) {
     const auto t1 = std::chrono::steady_clock::now();
     ProgressJob::stage("heights");
     ProgressJob::rounds_left(ctx.plan.lambda_rounds + 1);  // and the check at full density
@@ -264,7 +270,7 @@ PackResult finish_at(const SearchContext& ctx, const PackOptions& options, Remes
       }
       lo = mid;
       if (stream.size() < out.stream.size()) {
-        rm.error_at_full_density = false;  // another stream
+        rm.error_at_full_density = lambda_full;  // another stream, measured here
         out.stream = std::move(stream);
         out.report = report;
         out.remesh.error = e;
@@ -409,8 +415,16 @@ EffortPlan effort_plan(int effort) {
   // quantization steps or more (coarser_step_from_grid): on the paper's models only the venus, whose stream went
   // from +7.8% to +0.06% against effort 9 for about the same CPU; on a smooth sphere it cost 1.5-5% at three of four
   // targets (bench/README.md "pack effort", eighth round).
+  // Effort 0 also cheapens the seam error flips (one closest-point sample per triangle instead of seven, their mean
+  // error over every 16th face), measures its lambda round at full density (the check reuses it) and skips that
+  // round when the rounded heights are at 0.97 of the target or more: 15-20% fewer CPU samples on the venus and the
+  // feline, streams within -0.1..+0.8% on the paper's models (bench/README.md "pack effort", eleventh round).
   switch (effort) {
-    case 0: p.steps = 1; p.search_samples_per_face = 2; p.lambda_rounds = 1; p.grid_tolerance = 0.15; p.accept_error = 0; p.decode_in_band = true; break;
+    case 0:
+      p.steps = 1; p.search_samples_per_face = 2; p.lambda_rounds = 1; p.grid_tolerance = 0.15; p.accept_error = 0;
+      p.decode_in_band = true; p.error_samples = 1; p.error_unit_stride = 16; p.lambda_below = 0.97;
+      p.lambda_full_density = true;
+      break;
     case 1: p.steps = 1; p.search_samples_per_face = 2; p.lambda_rounds = 3; p.grid_tolerance = 0.1; p.accept_error = 0.85; break;
     case 2: p.steps = 1; p.search_samples_per_face = 4; p.lambda_rounds = 4; p.grid_tolerance = 0.06; p.accept_error = 0.9; break;
     case 3: p.steps = 1; p.defer_heights = true; p.coarser_step_from_grid = 15; p.search_samples_per_face = 4; p.lambda_rounds = 4; break;

@@ -20,25 +20,27 @@ constexpr double kErrorFlipGain = 0.1;
 
 }  // namespace
 
-// Squared distance to the input integrated over a triangle: seven samples, each weighted by a seventh of
-// twice the area. The hint only bounds the searches (the distance is the smallest over the input's triangles
+// Squared distance to the input integrated over a triangle: seven samples (the first SeamOptions::error_samples
+// of them), each weighted by its share of twice the area. The hint only bounds the searches (the distance is the smallest over the input's triangles
 // whatever it is): the callers carry one through neighbouring triangles. With `stop` finite, returns as soon as
 // base + (the error so far) >= stop, with the error so far: every sample adds a distance >= 0 and rounding is
 // monotone, so then base + (the full error) >= stop as well.
 double SeamOptimizer::triangle_error(const Vec3& a, const Vec3& b, const Vec3& c, AabbTree::Hit& hint,
                                      double base, double stop) const {
-  static constexpr double kSamples[7][3] = {{1.0 / 3, 1.0 / 3, 1.0 / 3},   {2.0 / 3, 1.0 / 6, 1.0 / 6},
+  static constexpr double kSamples[kTriangleErrorSamples][3] = {{1.0 / 3, 1.0 / 3, 1.0 / 3},   {2.0 / 3, 1.0 / 6, 1.0 / 6},
                                             {1.0 / 6, 2.0 / 3, 1.0 / 6},   {1.0 / 6, 1.0 / 6, 2.0 / 3},
                                             {1.0 / 6, 5.0 / 12, 5.0 / 12}, {5.0 / 12, 1.0 / 6, 5.0 / 12},
                                             {5.0 / 12, 5.0 / 12, 1.0 / 6}};
   const double area = norm(cross(b - a, c - a));
   double sum = 0;
-  for (const auto& w : kSamples) {
+  const double n = static_cast<double>(error_samples_);
+  for (int si = 0; si < error_samples_; ++si) {
+    const auto& w = kSamples[si];
     tree_.closest(a * w[0] + b * w[1] + c * w[2], hint);
     if (hint.found()) sum += hint.distance2;
-    if (base + sum * area / 7.0 >= stop) break;
+    if (base + sum * area / n >= stop) break;
   }
-  return sum * area / 7.0;
+  return sum * area / n;
 }
 
 // `q`: on success, the quad whose diagonal was flipped.
@@ -84,10 +86,11 @@ bool SeamOptimizer::touches_grid_face(EH e) const {
 
 size_t SeamOptimizer::reduce_error_by_flips() {
   double sum = 0;
-  size_t faces = 0;
+  size_t faces = 0, seen = 0;
   AabbTree::Hit hint;
   for (auto f : mesh_.faces()) {
     if (mesh_.status(f).deleted()) continue;
+    if (seen++ % error_unit_stride_ != 0) continue;  // SeamOptions::error_unit_stride
     auto it = mesh_.cfv_iter(f);
     const VH a = *it, b = *++it, c = *++it;
     sum += triangle_error(pos(a), pos(b), pos(c), hint);

@@ -84,6 +84,8 @@ RemeshResult remesh(const Mesh& input, const RemeshOptions& options, const Error
   ro.parallel = options.parallel;
   ro.fit_heights = options.fit_heights;
   ro.error_flip_weight = options.error_flip_weight;
+  ro.error_unit_stride = options.error_unit_stride;
+  ro.error_samples = options.error_samples;
   ro.input_tree = options.input_tree;
   const double diagonal = bbox_diagonal(input);
   ro.max_deviation = (options.refine_error > 0 ? options.refine_error : options.max_error) * diagonal;

@@ -207,6 +207,8 @@ PrmMesh resample_and_merge(const LayoutInput& layout, const ResampleOptions& opt
   so.max_normal_angle_deg = options.max_normal_angle_deg;
   so.grid_length = static_cast<double>(finest) * prm.frame.step;
   so.error_flip_weight = options.error_flip_weight;
+  so.error_unit_stride = options.error_unit_stride;
+  so.error_samples = options.error_samples;
   // The input's tree: the caller's (pack's Metro reference holds one of the same mesh), or one built here.
   std::unique_ptr<AabbTree> own_tree;
   if (!options.input_tree) own_tree = std::make_unique<AabbTree>(input);

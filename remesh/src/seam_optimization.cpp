@@ -3,6 +3,7 @@
 // edge).
 #include "seam_optimization.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <stdexcept>
@@ -19,7 +20,9 @@ SeamOptimizer::SeamOptimizer(MergedMesh& m, const Mesh& input, const std::vector
       normals_(normals),
       tree_(tree),
       cos_max_(std::cos(o.max_normal_angle_deg * M_PI / 180.0)),
-      error_flip_weight_(o.error_flip_weight) {
+      error_flip_weight_(o.error_flip_weight),
+      error_unit_stride_(o.error_unit_stride > 1 ? static_cast<size_t>(o.error_unit_stride) : 1),
+      error_samples_(std::clamp(o.error_samples, 1, kTriangleErrorSamples)) {
   // The input's faces around each vertex, for the faces tied for nearest at an edge or a corner.
   star_offset_.assign(input.positions.size() + 1, 0);
   for (const Tri& t : input.triangles)

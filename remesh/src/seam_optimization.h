@@ -14,6 +14,8 @@
 
 namespace prm::remesh {
 
+constexpr int kTriangleErrorSamples = 7;  // SeamOptions::error_samples at most (error_flips.cpp)
+
 struct SeamOptions {
   double max_normal_angle_deg = 90.0;  // a triangle is flipped beyond this angle from the reference normal
   double grid_length = 1.0;            // the grid size in model units (sets the zero-area tolerance)
@@ -22,6 +24,11 @@ struct SeamOptions {
   // closer to the input and, where it moves valences away from 6, by at least this many mean triangle errors per
   // unit of (valence - 6)^2 added. Negative: no error flips; 0: valences are not weighed.
   double error_flip_weight = kDefaultErrorFlipWeight;
+  // The error flips' squared distance of a triangle: closest-point samples at the first error_samples of
+  // kTriangleErrorSamples fixed points (the centroid first; fewer: cheaper and coarser). Their mean triangle error
+  // (the unit of the valence weight) is taken over every error_unit_stride-th face in the mesh's order (1: all).
+  int error_samples = kTriangleErrorSamples;
+  int error_unit_stride = 1;
 };
 
 struct SeamStats {

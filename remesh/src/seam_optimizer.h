@@ -102,6 +102,8 @@ class SeamOptimizer {
   const AabbTree& tree_;
   double cos_max_;
   double error_flip_weight_;
+  size_t error_unit_stride_;  // SeamOptions::error_unit_stride
+  int error_samples_;         // SeamOptions::error_samples
   double min_norm_;
   OMesh mesh_;
   struct FaceOkMemo {

@@ -155,6 +155,17 @@ struct EffortPlan {
   // (rounded heights) encoded and decoded rather than on the candidate quantized, one encode more, so that the kept
   // grid's full-density check reuses that measurement when the stream stays the rounded one.
   bool decode_in_band = false;
+  // The seam error flips (remesh::RemeshOptions::error_samples, error_unit_stride): closest-point samples per
+  // triangle of their squared distance (7: all), and every how many faces their mean triangle error is taken over.
+  int error_samples = 7;
+  int error_unit_stride = 1;
+  // The lambda rounds are skipped when the rounded heights' error is already at least this fraction of the target
+  // (0: never): lambda 0.15 added 0.1-3.3% of the target at full density on the paper's models, so from there it
+  // mostly misses, and its round costs an encode, a decode and a Metro run.
+  double lambda_below = 0;
+  // The lambda rounds measure at full density instead of the search's samples, so that the check reuses the kept
+  // lambda stream's measurement (its own Metro run otherwise).
+  bool lambda_full_density = false;
 };
 EffortPlan effort_plan(int effort);  // throws std::invalid_argument outside kMinEffort..kMaxEffort
 constexpr double kHeightTolerance = 1.5;

@@ -41,6 +41,8 @@ struct ResampleOptions {
   double max_normal_angle_deg = 90.0;  // paper: no triangle may turn more than 90 degrees away
   bool parallel = true;                // resample reliefs concurrently
   bool fit_heights = true;             // move lattice vertices along their axes to the least-squares fit
+  int error_unit_stride = 1;           // SeamOptions::error_unit_stride
+  int error_samples = 7;               // SeamOptions::error_samples (kTriangleErrorSamples: all)
   double error_flip_weight = kDefaultErrorFlipWeight;  // error flips (SeamOptions::error_flip_weight; < 0: none)
   // Local refinement (deviation_refinement.h): input vertices farther than this from the merged mesh (model units)
   // are inserted as irregular vertices. <= 0: none.
