@@ -70,6 +70,32 @@ TEST(PackEffort, EffortZeroReusesTheSearchsMeasurementOfTheStreamExactly) {
   EXPECT_LE(d.rel(d.rms), prm::pipeline::kQuantizationMargin * o.target_error);
 }
 
+// Effort 0's lambda round (EffortPlan::lambda_full_density): measured at full density, so that the check reuses
+// it. On spot at 5e-4 the lambda stream is kept; the reported error must be, bit for bit, the full-density Metro of
+// the decoded stream (a sparse estimate reused by mistake would differ). The effort-0 cuts are effort 0's only.
+TEST(PackEffort, EffortZeroMeasuresItsLambdaAtFullDensityAndTheCheckReusesItExactly) {
+  for (int effort = prm::pipeline::kMinEffort; effort <= prm::pipeline::kMaxEffort; ++effort) {
+    const prm::pipeline::EffortPlan p = prm::pipeline::effort_plan(effort);
+    EXPECT_EQ(p.lambda_full_density, effort == 0) << "effort " << effort;
+    EXPECT_EQ(p.lambda_below, effort == 0 ? 0.97 : 0.0) << "effort " << effort;
+    EXPECT_EQ(p.error_samples, effort == 0 ? 1 : prm::remesh::kTriangleErrorSamples) << "effort " << effort;
+    EXPECT_EQ(p.error_unit_stride, effort == 0 ? 16 : 1) << "effort " << effort;
+  }
+  const prm::Mesh input = prm::read_mesh(std::string(PRM_SHARED_MESHES) + "/spot.obj");
+  PackOptions o;
+  o.target_error = 5e-4;
+  o.effort = 0;
+  o.mode = prm::pipeline::PackMode::prm;
+  const prm::pipeline::PackResult r = prm::pipeline::pack(input, o);
+  EXPECT_GT(r.codec_options.height_lambda, 0.0);  // the lambda stream was kept
+  const auto decoded = prm::codec::decode(r.stream.data(), r.stream.size());
+  ASSERT_TRUE(decoded.ok()) << decoded.status.message;
+  const prm::DistanceReport d = prm::metro_distance(input, prm::pipeline::to_mesh(decoded.value));
+  EXPECT_EQ(r.remesh.error.rms, d.rel(d.rms));
+  EXPECT_EQ(r.remesh.error.max, d.rel(d.max));
+  EXPECT_LE(d.rel(d.rms), prm::pipeline::kQuantizationMargin * o.target_error);
+}
+
 // EffortPlan::coarser_step_from_grid: on a smooth sphere the default's first grid meets 5e-4 with room to spare and
 // its search would go on to a grid of more than 15 steps (26 at 9 bits), so effort 3 searches the next coarser step
 // instead. Both attempts are listed; the kept one is an eighth of an octave coarser and smaller, and meets the target.

@@ -20,17 +20,17 @@ constexpr double kErrorFlipGain = 0.1;
 
 }  // namespace
 
-// Squared distance to the input integrated over a triangle: seven samples (the first SeamOptions::error_samples
-// of them), each weighted by its share of twice the area. The hint only bounds the searches (the distance is the smallest over the input's triangles
-// whatever it is): the callers carry one through neighbouring triangles. With `stop` finite, returns as soon as
-// base + (the error so far) >= stop, with the error so far: every sample adds a distance >= 0 and rounding is
-// monotone, so then base + (the full error) >= stop as well.
+// Squared distance to the input integrated over a triangle: seven samples (the first SeamOptions::error_samples of
+// them), each weighted by its share of twice the area. The hint only bounds the searches (the distance is the
+// smallest over the input's triangles whatever it is): the callers carry one through neighbouring triangles. With
+// `stop` finite, returns as soon as base + (the error so far) >= stop, with the error so far: every sample adds a
+// distance >= 0 and rounding is monotone, so then base + (the full error) >= stop as well.
 double SeamOptimizer::triangle_error(const Vec3& a, const Vec3& b, const Vec3& c, AabbTree::Hit& hint,
                                      double base, double stop) const {
-  static constexpr double kSamples[kTriangleErrorSamples][3] = {{1.0 / 3, 1.0 / 3, 1.0 / 3},   {2.0 / 3, 1.0 / 6, 1.0 / 6},
-                                            {1.0 / 6, 2.0 / 3, 1.0 / 6},   {1.0 / 6, 1.0 / 6, 2.0 / 3},
-                                            {1.0 / 6, 5.0 / 12, 5.0 / 12}, {5.0 / 12, 1.0 / 6, 5.0 / 12},
-                                            {5.0 / 12, 5.0 / 12, 1.0 / 6}};
+  static constexpr double kSamples[kTriangleErrorSamples][3] = {
+      {1.0 / 3, 1.0 / 3, 1.0 / 3},   {2.0 / 3, 1.0 / 6, 1.0 / 6},   {1.0 / 6, 2.0 / 3, 1.0 / 6},
+      {1.0 / 6, 1.0 / 6, 2.0 / 3},   {1.0 / 6, 5.0 / 12, 5.0 / 12}, {5.0 / 12, 1.0 / 6, 5.0 / 12},
+      {5.0 / 12, 5.0 / 12, 1.0 / 6}};
   const double area = norm(cross(b - a, c - a));
   double sum = 0;
   const double n = static_cast<double>(error_samples_);

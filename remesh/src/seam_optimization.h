@@ -14,8 +14,6 @@
 
 namespace prm::remesh {
 
-constexpr int kTriangleErrorSamples = 7;  // SeamOptions::error_samples at most (error_flips.cpp)
-
 struct SeamOptions {
   double max_normal_angle_deg = 90.0;  // a triangle is flipped beyond this angle from the reference normal
   double grid_length = 1.0;            // the grid size in model units (sets the zero-area tolerance)

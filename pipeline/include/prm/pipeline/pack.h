@@ -157,7 +157,7 @@ struct EffortPlan {
   bool decode_in_band = false;
   // The seam error flips (remesh::RemeshOptions::error_samples, error_unit_stride): closest-point samples per
   // triangle of their squared distance (7: all), and every how many faces their mean triangle error is taken over.
-  int error_samples = 7;
+  int error_samples = remesh::kTriangleErrorSamples;
   int error_unit_stride = 1;
   // The lambda rounds are skipped when the rounded heights' error is already at least this fraction of the target
   // (0: never): lambda 0.15 added 0.1-3.3% of the target at full density on the paper's models, so from there it

@@ -79,7 +79,7 @@ struct RemeshOptions {
   bool fit_heights = true;       // least-squares heights of the lattice vertices (ResampleOptions::fit_heights)
   double error_flip_weight = kDefaultErrorFlipWeight;  // error flips (ResampleOptions::error_flip_weight; < 0: none)
   int error_unit_stride = 1;  // ResampleOptions::error_unit_stride (the seam error flips' mean triangle error)
-  int error_samples = 7;      // ResampleOptions::error_samples (points per triangle of the seam error flips)
+  int error_samples = kTriangleErrorSamples;  // ResampleOptions::error_samples (points per triangle, seam error flips)
 };
 
 // Symmetric RMS and maximum distance between the input and a candidate, as fractions of the input's diagonal.

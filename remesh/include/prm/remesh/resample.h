@@ -28,6 +28,9 @@ struct LayoutInput {
 // S 1.09) 8,961 / 8,908 / 8,926 / 9,088; bunny (2e-4, S 1) 7,103 / 7,073 / 7,111 / 7,229 (flips of seam edges only;
 // with the irregular edges inside reliefs too, at W = 2: 8,875 and 7,033).
 constexpr double kDefaultErrorFlipWeight = 2.0;
+// The points per triangle of the error flips' squared distance (error_flips.cpp), all of them;
+// SeamOptions::error_samples takes the first ones (pack's effort 0 one, the centroid).
+constexpr int kTriangleErrorSamples = 7;
 
 struct PrmMesh;
 
@@ -42,7 +45,7 @@ struct ResampleOptions {
   bool parallel = true;                // resample reliefs concurrently
   bool fit_heights = true;             // move lattice vertices along their axes to the least-squares fit
   int error_unit_stride = 1;           // SeamOptions::error_unit_stride
-  int error_samples = 7;               // SeamOptions::error_samples (kTriangleErrorSamples: all)
+  int error_samples = kTriangleErrorSamples;  // SeamOptions::error_samples
   double error_flip_weight = kDefaultErrorFlipWeight;  // error flips (SeamOptions::error_flip_weight; < 0: none)
   // Local refinement (deviation_refinement.h): input vertices farther than this from the merged mesh (model units)
   // are inserted as irregular vertices. <= 0: none.
