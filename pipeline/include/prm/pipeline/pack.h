@@ -160,8 +160,10 @@ struct EffortPlan {
   int error_samples = remesh::kTriangleErrorSamples;
   int error_unit_stride = 1;
   // The lambda rounds are skipped when the rounded heights' error is already at least this fraction of the target
-  // (0: never): lambda 0.15 added 0.1-3.3% of the target at full density on the paper's models, so from there it
-  // mostly misses, and its round costs an encode, a decode and a Metro run.
+  // (0: never): each costs an encode, a decode and a Metro run, and near the target the lambda misses. On the
+  // feline at effort 0 the rounded stream is at 0.972 of the target and lambda 0.15's at 1.005 (both at full
+  // density); on horse, venus and bunny_zipper lambda 0.15 moved the error by -1.2..+0.5% of the target against the
+  // search's estimate of the rounded one (bench/README.md "pack effort", eleventh round).
   double lambda_below = 0;
   // The lambda rounds measure at full density instead of the search's samples, so that the check reuses the kept
   // lambda stream's measurement (its own Metro run otherwise).
