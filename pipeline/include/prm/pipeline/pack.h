@@ -160,7 +160,8 @@ struct EffortPlan {
   int error_samples = remesh::kTriangleErrorSamples;
   int error_unit_stride = 1;
   // The lambda rounds are skipped when the rounded heights' error is already at least this fraction of the target
-  // (0: never): each costs an encode, a decode and a Metro run, and near the target the lambda misses. On the
+  // (0: never): each costs an encode, a decode and a Metro run, and near the target the lambda misses. At 0.97 (the
+  // lower end of pack.cpp's kSparseBand) that error is always a full-density measurement, not an estimate. On the
   // feline at effort 0 the rounded stream is at 0.972 of the target and lambda 0.15's at 1.005 (both at full
   // density); on horse, venus and bunny_zipper lambda 0.15 moved the error by -1.2..+0.5% of the target against the
   // search's estimate of the rounded one (bench/README.md "pack effort", eleventh round).
