@@ -43,6 +43,25 @@ TEST(PackEffort, LevelsOutsideTheRangeAreRefused) {
   EXPECT_EQ(three.coarser_step_from_grid, 15);
 }
 
+// spot.obj packed at effort 0 in PRM mode.
+prm::pipeline::PackResult pack_spot_at_effort_zero(const prm::Mesh& spot, double target) {
+  PackOptions o;
+  o.target_error = target;
+  o.effort = 0;
+  o.mode = prm::pipeline::PackMode::prm;
+  return prm::pipeline::pack(spot, o);
+}
+
+// The reported error is, bit for bit, the full-density Metro of the stream decoded, and meets the target.
+void expect_report_is_full_density_metro(const prm::Mesh& input, const prm::pipeline::PackResult& r, double target) {
+  const auto decoded = prm::codec::decode(r.stream.data(), r.stream.size());
+  ASSERT_TRUE(decoded.ok()) << decoded.status.message;
+  const prm::DistanceReport d = prm::metro_distance(input, prm::pipeline::to_mesh(decoded.value));
+  EXPECT_EQ(r.remesh.error.rms, d.rel(d.rms));
+  EXPECT_EQ(r.remesh.error.max, d.rel(d.max));
+  EXPECT_LE(d.rel(d.rms), prm::pipeline::kQuantizationMargin * target);
+}
+
 // EffortPlan::decode_in_band (effort 0 only): spot's kept grid at 2e-4 has a sparse estimate near the target, so the
 // search measured its stream at full density and the check reused that measurement. The reported error must be,
 // bit for bit, the full-density Metro of the decoded stream (the candidate quantized instead of decoded gave a
@@ -51,23 +70,14 @@ TEST(PackEffort, EffortZeroReusesTheSearchsMeasurementOfTheStreamExactly) {
   for (int effort = prm::pipeline::kMinEffort; effort <= prm::pipeline::kMaxEffort; ++effort)
     EXPECT_EQ(prm::pipeline::effort_plan(effort).decode_in_band, effort == 0) << "effort " << effort;
   const prm::Mesh input = prm::read_mesh(std::string(PRM_SHARED_MESHES) + "/spot.obj");
-  PackOptions o;
-  o.target_error = 2e-4;
-  o.effort = 0;
-  o.mode = prm::pipeline::PackMode::prm;
-  const prm::pipeline::PackResult r = prm::pipeline::pack(input, o);
+  const prm::pipeline::PackResult r = pack_spot_at_effort_zero(input, 2e-4);
   ASSERT_FALSE(r.remesh.search.empty());
   // The reuse happened: the kept grid's search error is the reported one (a sparse estimate would differ).
   const prm::remesh::SearchStep& kept = r.remesh.search.back();
   EXPECT_EQ(kept.error.rms, r.remesh.error.rms);
   EXPECT_EQ(kept.error.max, r.remesh.error.max);
   EXPECT_EQ(r.codec_options.height_lambda, 0.0);
-  const auto decoded = prm::codec::decode(r.stream.data(), r.stream.size());
-  ASSERT_TRUE(decoded.ok()) << decoded.status.message;
-  const prm::DistanceReport d = prm::metro_distance(input, prm::pipeline::to_mesh(decoded.value));
-  EXPECT_EQ(r.remesh.error.rms, d.rel(d.rms));
-  EXPECT_EQ(r.remesh.error.max, d.rel(d.max));
-  EXPECT_LE(d.rel(d.rms), prm::pipeline::kQuantizationMargin * o.target_error);
+  expect_report_is_full_density_metro(input, r, 2e-4);
 }
 
 // Effort 0's lambda round (EffortPlan::lambda_full_density): measured at full density, so that the check reuses
@@ -82,18 +92,9 @@ TEST(PackEffort, EffortZeroMeasuresItsLambdaAtFullDensityAndTheCheckReusesItExac
     EXPECT_EQ(p.error_unit_stride, effort == 0 ? 16 : 1) << "effort " << effort;
   }
   const prm::Mesh input = prm::read_mesh(std::string(PRM_SHARED_MESHES) + "/spot.obj");
-  PackOptions o;
-  o.target_error = 5e-4;
-  o.effort = 0;
-  o.mode = prm::pipeline::PackMode::prm;
-  const prm::pipeline::PackResult r = prm::pipeline::pack(input, o);
+  const prm::pipeline::PackResult r = pack_spot_at_effort_zero(input, 5e-4);
   EXPECT_GT(r.codec_options.height_lambda, 0.0);  // the lambda stream was kept
-  const auto decoded = prm::codec::decode(r.stream.data(), r.stream.size());
-  ASSERT_TRUE(decoded.ok()) << decoded.status.message;
-  const prm::DistanceReport d = prm::metro_distance(input, prm::pipeline::to_mesh(decoded.value));
-  EXPECT_EQ(r.remesh.error.rms, d.rel(d.rms));
-  EXPECT_EQ(r.remesh.error.max, d.rel(d.max));
-  EXPECT_LE(d.rel(d.rms), prm::pipeline::kQuantizationMargin * o.target_error);
+  expect_report_is_full_density_metro(input, r, 5e-4);
 }
 
 // EffortPlan::coarser_step_from_grid: on a smooth sphere the default's first grid meets 5e-4 with room to spare and
