@@ -209,6 +209,7 @@ Status decode_symbols(const uint8_t* clers, size_t clers_size, uint64_t clers_of
       } else {
         s = rc.decode_bit(m[3]) ? kE : kL;
       }
+      PRM_ENTROPY_TRACE_CALL(clers(clers_context(prev1, prev2, count, seam), s, depth >= 2));
       if (rc.failed()) return fail("5.5");
     }
     if (!sr.apply(i, s)) return fail("6.4");

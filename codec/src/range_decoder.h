@@ -10,6 +10,7 @@
 
 #include "adaptive_model.h"
 #include "always_inline.h"
+#include "entropy_trace.h"
 
 namespace prm::codec {
 
@@ -30,11 +31,13 @@ class RangeDecoder {
     range_ = bit ? range_ - bound : bound;
     m.update(bit);
     normalize();
+    PRM_ENTROPY_TRACE_CALL(bit());
     return static_cast<int>(bit);
   }
 
   // §5.4 `count` (0..24) equiprobable bits, most significant first.
   PRM_ALWAYS_INLINE uint32_t decode_direct(int count) {
+    PRM_ENTROPY_TRACE_CALL(direct(count));
     uint32_t v = 0;
     for (int i = 0; i < count; ++i) {
       range_ >>= 1;

@@ -1,0 +1,263 @@
+// prm_bench_entropy_study (hdecode8, bench/README.md "hdecode8: entropy-layer study"): what a faster entropy layer
+// would save. For each stream, the values its range-coded sections yield (CLERS symbols, position residuals, §9.5
+// signed integers: heights, patch headers, LERS) are captured from a traced copy of the decoder, then coded by
+//   today   scheme (a): today's format (range coder, adaptive binary models; today_coding.h)
+//   static  scheme (b): static per-stream tables, interleaved rANS, raw low bits, today's contexts (static_coding.h)
+//   pooled  scheme (c): as (b) with pooled CLERS and residual contexts
+// and each scheme's decoders are timed (CPU time of the thread, rounds alternating the schemes, best kept) on exactly
+// those values, with the contexts taken from the capture. Every decode is checked against the capture.
+//
+//   prm_bench_entropy_study [--rounds=N] FILE.prm...   table (markdown) of bytes and decode time per kind and scheme
+//   prm_bench_entropy_study --check FILE.prm...        round trips only; exit 1 if a scheme mis-decodes a value
+//   prm_bench_entropy_study --profile=SCHEME:N FILE... decode every kind N times with one scheme, no timing (callgrind:
+//                                                      --toggle-collect='entropy_study::*')
+// Exit codes: 0 ok, 1 a scheme mis-decoded (or a capture's own replay did not match), 2 bad usage or unreadable stream.
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "../cpu_time.h"
+#include "static_coding.h"
+#include "today_coding.h"
+#include "trace_capture.h"
+
+namespace entropy_study {
+namespace {
+
+enum Kind { kClers, kResiduals, kSigned, kKinds };
+const char* const kKindName[kKinds] = {"CLERS", "residuals", "signed ints"};
+enum Scheme { kToday, kStatic, kPooled, kSchemes };
+const char* const kSchemeName[kSchemes] = {"(a) today", "(b) static rANS", "(c) static rANS, pooled"};
+const char* const kSchemeArg[kSchemes] = {"today", "static", "pooled"};
+
+// Today's modelled decisions and direct bits for the captured values (§6.5.1, §10.4.1, §9.5).
+struct Work {
+  uint64_t decisions = 0, direct = 0;
+};
+Work today_work(const Capture& c, Kind kind) {
+  using namespace prm::codec;
+  Work w;
+  if (kind == kClers) {
+    for (const ClersValue& v : c.clers)
+      w.decisions += v.symbol == kC ? 1 : v.symbol == kR ? 2 : v.symbol == kS ? 3 : 3 + v.s_possible;
+  } else if (kind == kResiduals) {
+    std::vector<RiceState> rice(3 * kResidualContexts);
+    uint32_t block = c.residuals.empty() ? 0 : c.residuals[0].block;
+    for (const ResidualValue& v : c.residuals) {
+      if (v.block != block) rice.assign(rice.size(), RiceState{}), block = v.block;
+      const int k = rice[v.ctx].k();
+      const uint64_t q = zigzag(v.r) >> k;
+      w.decisions += (q < kUnaryEscape ? q + 1 : kUnaryEscape) + (k > 0);
+      w.direct += (q >= kUnaryEscape ? kEscapeBits : 0) + (k > 1 ? k - 1 : 0);
+      rice[v.ctx].update(static_cast<uint32_t>(v.r < 0 ? -v.r : v.r));
+    }
+  } else {
+    for (const SignedValue& v : c.signed_ints) {
+      ++w.decisions;
+      if (v.v == 0) continue;
+      const int e = int_class(static_cast<uint64_t>(v.v < 0 ? -v.v : v.v));
+      w.decisions += 1 + e + (e < kMaxClass) + (e > 0);
+      w.direct += e > 1 ? e - 1 : 0;
+    }
+  }
+  return w;
+}
+
+// One stream's three kinds coded by the three schemes, with decoders that can be timed and checked.
+struct Study {
+  const Capture& c;
+  std::vector<uint8_t> today[kKinds];
+  ClersCoder clers_b{Contexts::today}, clers_c{Contexts::pooled};
+  ResidualCoder residual_b{Contexts::today}, residual_c{Contexts::pooled};
+  SignedCoder signed_b, signed_c;
+  StaticStream stat[2][kKinds];
+  std::vector<uint8_t> out_clers;
+  std::vector<int64_t> out_values;
+
+  explicit Study(const Capture& capture) : c(capture) {
+    today[kClers] = today_encode_clers(c.clers);
+    today[kResiduals] = today_encode_residuals(c.residuals);
+    today[kSigned] = today_encode_signed(c.signed_ints, c.signed_models, c.sign_models);
+    stat[0][kClers] = clers_b.encode(c.clers);
+    stat[1][kClers] = clers_c.encode(c.clers);
+    stat[0][kResiduals] = residual_b.encode(c.residuals);
+    stat[1][kResiduals] = residual_c.encode(c.residuals);
+    stat[0][kSigned] = signed_b.encode(c.signed_ints);
+    stat[1][kSigned] = signed_c.encode(c.signed_ints);
+    out_clers.resize(c.clers.size());
+    out_values.resize(std::max(c.residuals.size(), c.signed_ints.size()));
+  }
+  size_t values(Kind k) const {
+    return k == kClers ? c.clers.size() : k == kResiduals ? c.residuals.size() : c.signed_ints.size();
+  }
+  size_t bytes(Scheme s, Kind k) const { return s == kToday ? today[k].size() : stat[s - 1][k].bytes(); }
+  size_t table_bytes(Scheme s, Kind k) const { return s == kToday ? 0 : stat[s - 1][k].table_bytes; }
+  bool decode(Scheme s, Kind k) {
+    if (values(k) == 0) return true;
+    if (s == kToday) {
+      if (k == kClers) return today_decode_clers(today[k], c.clers, out_clers.data());
+      if (k == kResiduals) return today_decode_residuals(today[k], c.residuals, out_values.data());
+      return today_decode_signed(today[k], c.signed_ints, c.signed_models, c.sign_models, out_values.data());
+    }
+    const StaticStream& st = stat[s - 1][k];
+    if (k == kClers) return (s == kStatic ? clers_b : clers_c).decode(st, c.clers, out_clers.data());
+    if (k == kResiduals) return (s == kStatic ? residual_b : residual_c).decode(st, c.residuals, out_values.data());
+    return (s == kStatic ? signed_b : signed_c).decode(st, c.signed_ints, out_values.data());
+  }
+  // Decodes and compares with the capture.
+  bool check(Scheme s, Kind k) {
+    if (!decode(s, k)) return false;
+    for (size_t i = 0; i < values(k); ++i) {
+      const bool same = k == kClers ? out_clers[i] == c.clers[i].symbol
+                        : k == kResiduals ? out_values[i] == c.residuals[i].r
+                                          : out_values[i] == c.signed_ints[i].v;
+      if (!same) return false;
+    }
+    return true;
+  }
+};
+
+std::vector<uint8_t> read_file(const std::string& path, bool& ok) {
+  std::ifstream in(path, std::ios::binary);
+  std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ok = static_cast<bool>(in) || in.eof();
+  return bytes;
+}
+
+std::string base_name(const std::string& path) {
+  const size_t slash = path.find_last_of('/');
+  return slash == std::string::npos ? path : path.substr(slash + 1);
+}
+
+int run(int argc, char** argv) {
+  int rounds = 15, profile = 0;
+  bool check_only = false;
+  Scheme profile_scheme = kToday;
+  std::vector<std::string> files;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a.rfind("--rounds=", 0) == 0) {
+      rounds = std::max(1, std::atoi(a.c_str() + 9));
+    } else if (a == "--check") {
+      check_only = true;
+    } else if (a.rfind("--profile=", 0) == 0) {
+      const std::string v = a.substr(10);
+      const size_t colon = v.find(':');
+      int s = 0;
+      while (s < kSchemes && v.substr(0, colon) != kSchemeArg[s]) ++s;
+      if (colon == std::string::npos || s == kSchemes) {
+        std::fprintf(stderr, "--profile=SCHEME:N with SCHEME today, static or pooled\n");
+        return 2;
+      }
+      profile_scheme = static_cast<Scheme>(s);
+      profile = std::max(1, std::atoi(v.c_str() + colon + 1));
+    } else if (!a.empty() && a[0] != '-') {
+      files.push_back(a);
+    } else {
+      std::fprintf(a == "--help" || a == "-h" ? stdout : stderr,
+                   "usage: %s [--rounds=N | --check | --profile=today|static|pooled:N] FILE.prm...\n"
+                   "exit codes: 0 ok, 1 a scheme mis-decoded, 2 bad usage or unreadable stream\n",
+                   argv[0]);
+      return a == "--help" || a == "-h" ? 0 : 2;
+    }
+  }
+  if (files.empty()) {
+    std::fprintf(stderr, "no stream given (--help)\n");
+    return 2;
+  }
+  int status = 0;
+  if (!check_only && !profile)
+    std::printf("| stream | V | kind | values | decisions + direct bits today | scheme | bytes | of which tables | "
+                "ns/value | ns/vertex |\n|---|---:|---|---:|---:|---|---:|---:|---:|---:|\n");
+  for (const std::string& file : files) {
+    bool ok = false;
+    const std::vector<uint8_t> bytes = read_file(file, ok);
+    Capture cap;
+    std::string error;
+    if (!ok || !capture_stream(bytes.data(), bytes.size(), cap, error)) {
+      std::fprintf(stderr, "%s: %s\n", file.c_str(), ok ? error.c_str() : "cannot read");
+      status = std::max(status, 2);
+      continue;
+    }
+    Study st(cap);
+    bool exact = true;
+    for (int s = 0; s < kSchemes; ++s)
+      for (int k = 0; k < kKinds; ++k)
+        if (!st.check(static_cast<Scheme>(s), static_cast<Kind>(k))) {
+          std::fprintf(stderr, "%s: %s mis-decodes the %s\n", file.c_str(), kSchemeName[s], kKindName[k]);
+          exact = false;
+        }
+    if (!exact) status = 1;
+    Work all;
+    for (int k = 0; k < kKinds; ++k) {
+      const Work w = today_work(cap, static_cast<Kind>(k));
+      all.decisions += w.decisions;
+      all.direct += w.direct;
+    }
+    std::fprintf(stderr,
+                 "%s: %zu bytes, V %zu, T %zu; %zu CLERS, %zu residuals, %zu signed; decode: %llu decisions, %llu "
+                 "direct bits (of which the captured values %llu, %llu); range-coded blocks:",
+                 base_name(file).c_str(), bytes.size(), cap.vertices, cap.triangles, cap.clers.size(),
+                 cap.residuals.size(), cap.signed_ints.size(), static_cast<unsigned long long>(cap.decisions),
+                 static_cast<unsigned long long>(cap.direct_bits), static_cast<unsigned long long>(all.decisions),
+                 static_cast<unsigned long long>(all.direct));
+    for (size_t b : cap.block_sizes) std::fprintf(stderr, " %zu", b);
+    std::fprintf(stderr, "; today's replay: %zu, %zu, %zu bytes%s\n", st.today[kClers].size(),
+                 st.today[kResiduals].size(), st.today[kSigned].size(), exact ? "" : " (MIS-DECODED)");
+    if (check_only) continue;
+    if (profile) {
+      for (int r = 0; r < profile; ++r)
+        for (int k = 0; k < kKinds; ++k) st.decode(profile_scheme, static_cast<Kind>(k));
+      continue;
+    }
+    // Rounds alternate the schemes (the starting one rotates); each timing runs the decoder for >= 20 ms.
+    double best[kSchemes][kKinds];
+    int inner[kSchemes][kKinds];
+    for (auto& row : best) std::fill(row, row + kKinds, 1e30);
+    for (auto& row : inner) std::fill(row, row + kKinds, 1);
+    for (int r = 0; r < rounds; ++r)
+      for (int i = 0; i < kSchemes; ++i) {
+        const Scheme s = static_cast<Scheme>((i + r) % kSchemes);
+        for (int k = 0; k < kKinds; ++k) {
+          if (st.values(static_cast<Kind>(k)) == 0) continue;
+          const double t0 = prm::bench::thread_cpu_seconds();
+          for (int n = 0; n < inner[s][k]; ++n) st.decode(s, static_cast<Kind>(k));
+          const double t = (prm::bench::thread_cpu_seconds() - t0) / inner[s][k];
+          best[s][k] = std::min(best[s][k], t);
+          inner[s][k] = static_cast<int>(std::clamp(0.02 / std::max(t, 1e-9), 1.0, 1e5));
+        }
+      }
+    const double nv = static_cast<double>(cap.vertices);
+    for (int s = 0; s < kSchemes; ++s) {
+      double total_ns = 0;
+      size_t total_bytes = 0, total_tables = 0;
+      for (int k = 0; k < kKinds; ++k) {
+        const Kind kind = static_cast<Kind>(k);
+        const size_t n = st.values(kind);
+        const double ns = n ? best[s][k] * 1e9 : 0;
+        total_ns += ns;
+        total_bytes += st.bytes(static_cast<Scheme>(s), kind);
+        total_tables += st.table_bytes(static_cast<Scheme>(s), kind);
+        const Work w = today_work(cap, kind);
+        std::printf("| %s | %zu | %s | %zu | %llu + %llu | %s | %zu | %zu | %.2f | %.1f |\n", base_name(file).c_str(),
+                    cap.vertices, kKindName[k], n, static_cast<unsigned long long>(w.decisions),
+                    static_cast<unsigned long long>(w.direct), kSchemeName[s], st.bytes(static_cast<Scheme>(s), kind),
+                    st.table_bytes(static_cast<Scheme>(s), kind), n ? ns / static_cast<double>(n) : 0.0, ns / nv);
+      }
+      std::printf("| %s | %zu | **all three** | | | %s | %zu | %zu | | **%.1f** |\n", base_name(file).c_str(),
+                  cap.vertices, kSchemeName[s], total_bytes, total_tables, total_ns / nv);
+    }
+    std::fflush(stdout);
+  }
+  return status;
+}
+
+}  // namespace
+}  // namespace entropy_study
+
+int main(int argc, char** argv) { return entropy_study::run(argc, argv); }
