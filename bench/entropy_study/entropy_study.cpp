@@ -6,11 +6,15 @@
 //   pooled  scheme (c): as (b) with pooled CLERS and residual contexts
 // and each scheme's decoders are timed (CPU time of the thread, rounds alternating the schemes, best kept) on exactly
 // those values, with the contexts taken from the capture. Every decode is checked against the capture.
+// Second table: the whole decode (prm::codec::decode, the library's objects) against the same decoder with an oracle
+// for §5 (oracle_decode.h: the captured decisions handed out with no arithmetic), alternating; the difference is what
+// the range coder's arithmetic and model updates cost inside the real decode.
 //
 //   prm_bench_entropy_study [--rounds=N] FILE.prm...   table (markdown) of bytes and decode time per kind and scheme
 //   prm_bench_entropy_study --check FILE.prm...        round trips only; exit 1 if a scheme mis-decodes a value
-//   prm_bench_entropy_study --profile=SCHEME:N FILE... decode every kind N times with one scheme, no timing (callgrind:
-//                                                      --toggle-collect='entropy_study::*')
+//   prm_bench_entropy_study --profile=WHAT:N FILE...   no timing, for callgrind: WHAT today, static or pooled decodes
+//                                                      every kind N times with that scheme; real or oracle decodes
+//                                                      the whole stream N times
 // Exit codes: 0 ok, 1 a scheme mis-decoded (or a capture's own replay did not match), 2 bad usage or unreadable stream.
 #include <algorithm>
 #include <cstdio>
@@ -22,6 +26,8 @@
 #include <vector>
 
 #include "../cpu_time.h"
+#include "oracle_decode.h"
+#include "prm/codec.h"
 #include "static_coding.h"
 #include "today_coding.h"
 #include "trace_capture.h"
@@ -134,10 +140,19 @@ std::string base_name(const std::string& path) {
   return slash == std::string::npos ? path : path.substr(slash + 1);
 }
 
+// The library's decode of a stream, positions and triangles out.
+bool real_decode(const std::vector<uint8_t>& bytes, std::vector<float>& positions, std::vector<uint32_t>& triangles) {
+  auto decoded = prm::codec::decode(bytes.data(), bytes.size());
+  if (!decoded.ok()) return false;
+  positions = std::move(decoded.value.positions_f32);
+  triangles = std::move(decoded.value.triangles);
+  return true;
+}
+
 int run(int argc, char** argv) {
   int rounds = 15, profile = 0;
   bool check_only = false;
-  Scheme profile_scheme = kToday;
+  int profile_what = kToday;  // a Scheme, or kSchemes (real) or kSchemes + 1 (oracle)
   std::vector<std::string> files;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -148,19 +163,21 @@ int run(int argc, char** argv) {
     } else if (a.rfind("--profile=", 0) == 0) {
       const std::string v = a.substr(10);
       const size_t colon = v.find(':');
+      const std::string what = v.substr(0, colon);
       int s = 0;
-      while (s < kSchemes && v.substr(0, colon) != kSchemeArg[s]) ++s;
-      if (colon == std::string::npos || s == kSchemes) {
-        std::fprintf(stderr, "--profile=SCHEME:N with SCHEME today, static or pooled\n");
+      while (s < kSchemes && what != kSchemeArg[s]) ++s;
+      if (what == "real" || what == "oracle") s = what == "real" ? kSchemes : kSchemes + 1;
+      if (colon == std::string::npos || (s == kSchemes && what != "real")) {
+        std::fprintf(stderr, "--profile=WHAT:N with WHAT today, static, pooled, real or oracle\n");
         return 2;
       }
-      profile_scheme = static_cast<Scheme>(s);
+      profile_what = s;
       profile = std::max(1, std::atoi(v.c_str() + colon + 1));
     } else if (!a.empty() && a[0] != '-') {
       files.push_back(a);
     } else {
       std::fprintf(a == "--help" || a == "-h" ? stdout : stderr,
-                   "usage: %s [--rounds=N | --check | --profile=today|static|pooled:N] FILE.prm...\n"
+                   "usage: %s [--rounds=N | --check | --profile=today|static|pooled|real|oracle:N] FILE.prm...\n"
                    "exit codes: 0 ok, 1 a scheme mis-decoded, 2 bad usage or unreadable stream\n",
                    argv[0]);
       return a == "--help" || a == "-h" ? 0 : 2;
@@ -171,6 +188,7 @@ int run(int argc, char** argv) {
     return 2;
   }
   int status = 0;
+  std::vector<std::string> oracle_rows;
   if (!check_only && !profile)
     std::printf("| stream | V | kind | values | decisions + direct bits today | scheme | bytes | of which tables | "
                 "ns/value | ns/vertex |\n|---|---:|---|---:|---:|---|---:|---:|---:|---:|\n");
@@ -192,6 +210,13 @@ int run(int argc, char** argv) {
           std::fprintf(stderr, "%s: %s mis-decodes the %s\n", file.c_str(), kSchemeName[s], kKindName[k]);
           exact = false;
         }
+    std::vector<float> real_p, oracle_p;
+    std::vector<uint32_t> real_t, oracle_t;
+    if (!real_decode(bytes, real_p, real_t) || !oracle_decode(bytes.data(), bytes.size(), cap, oracle_p, oracle_t) ||
+        real_p != oracle_p || real_t != oracle_t) {
+      std::fprintf(stderr, "%s: the oracle's decode differs from the real one\n", file.c_str());
+      exact = false;
+    }
     if (!exact) status = 1;
     Work all;
     for (int k = 0; k < kKinds; ++k) {
@@ -200,10 +225,12 @@ int run(int argc, char** argv) {
       all.direct += w.direct;
     }
     std::fprintf(stderr,
-                 "%s: %zu bytes, V %zu, T %zu; %zu CLERS, %zu residuals, %zu signed; decode: %llu decisions, %llu "
+                 "%s: %zu bytes, V %zu, T %zu; %zu CLERS, %zu residuals, %zu signed (%u models, %u sign models); decode: "
+                 "%llu decisions, %llu "
                  "direct bits (of which the captured values %llu, %llu); range-coded blocks:",
                  base_name(file).c_str(), bytes.size(), cap.vertices, cap.triangles, cap.clers.size(),
-                 cap.residuals.size(), cap.signed_ints.size(), static_cast<unsigned long long>(cap.decisions),
+                 cap.residuals.size(), cap.signed_ints.size(), cap.signed_models, cap.sign_models,
+                 static_cast<unsigned long long>(cap.decisions),
                  static_cast<unsigned long long>(cap.direct_bits), static_cast<unsigned long long>(all.decisions),
                  static_cast<unsigned long long>(all.direct));
     for (size_t b : cap.block_sizes) std::fprintf(stderr, " %zu", b);
@@ -211,8 +238,14 @@ int run(int argc, char** argv) {
                  st.today[kResiduals].size(), st.today[kSigned].size(), exact ? "" : " (MIS-DECODED)");
     if (check_only) continue;
     if (profile) {
-      for (int r = 0; r < profile; ++r)
-        for (int k = 0; k < kKinds; ++k) st.decode(profile_scheme, static_cast<Kind>(k));
+      for (int r = 0; r < profile; ++r) {
+        if (profile_what == kSchemes)
+          real_decode(bytes, real_p, real_t);
+        else if (profile_what == kSchemes + 1)
+          oracle_decode(bytes.data(), bytes.size(), cap, oracle_p, oracle_t);
+        else
+          for (int k = 0; k < kKinds; ++k) st.decode(static_cast<Scheme>(profile_what), static_cast<Kind>(k));
+      }
       continue;
     }
     // Rounds alternate the schemes (the starting one rotates); each timing runs the decoder for >= 20 ms.
@@ -232,7 +265,27 @@ int run(int argc, char** argv) {
           inner[s][k] = static_cast<int>(std::clamp(0.02 / std::max(t, 1e-9), 1.0, 1e5));
         }
       }
+    // The whole decode, real and with the oracle, alternating (the first one rotates).
+    double best_whole[2] = {1e30, 1e30};
+    int inner_whole[2] = {1, 1};
+    for (int r = 0; r < rounds; ++r)
+      for (int i = 0; i < 2; ++i) {
+        const int w = (i + r) % 2;
+        const double t0 = prm::bench::thread_cpu_seconds();
+        for (int n = 0; n < inner_whole[w]; ++n)
+          (void)(w == 0 ? real_decode(bytes, real_p, real_t)
+                        : oracle_decode(bytes.data(), bytes.size(), cap, oracle_p, oracle_t));
+        const double t = (prm::bench::thread_cpu_seconds() - t0) / inner_whole[w];
+        best_whole[w] = std::min(best_whole[w], t);
+        inner_whole[w] = static_cast<int>(std::clamp(0.05 / std::max(t, 1e-9), 1.0, 1e5));
+      }
     const double nv = static_cast<double>(cap.vertices);
+    char row[512];
+    std::snprintf(row, sizeof row, "| %s | %zu | %llu + %llu | %.1f | %.1f | %.1f | %.0f%% |\n", base_name(file).c_str(),
+                  cap.vertices, static_cast<unsigned long long>(cap.decisions),
+                  static_cast<unsigned long long>(cap.direct_bits), best_whole[0] * 1e9 / nv, best_whole[1] * 1e9 / nv,
+                  (best_whole[0] - best_whole[1]) * 1e9 / nv, 100.0 * (best_whole[0] - best_whole[1]) / best_whole[0]);
+    oracle_rows.push_back(row);
     for (int s = 0; s < kSchemes; ++s) {
       double total_ns = 0;
       size_t total_bytes = 0, total_tables = 0;
@@ -253,6 +306,11 @@ int run(int argc, char** argv) {
                   cap.vertices, kSchemeName[s], total_bytes, total_tables, total_ns / nv);
     }
     std::fflush(stdout);
+  }
+  if (!oracle_rows.empty()) {
+    std::printf("\n| stream | V | decisions + direct bits | decode ns/vertex | with the §5 oracle | difference | of the decode "
+                "|\n|---|---:|---:|---:|---:|---:|---:|\n");
+    for (const std::string& row : oracle_rows) std::printf("%s", row.c_str());
   }
   return status;
 }

@@ -54,12 +54,16 @@ void signed_int(const void* model, const void* sign, int max_class, int64_t v) {
                            static_cast<uint8_t>(own), static_cast<int8_t>(max_class), g_state.block, v});
 }
 
-void bit() {
-  if (g_state.out) ++g_state.out->decisions;
+void bit(uint32_t b) {
+  if (!g_state.out) return;
+  ++g_state.out->decisions;
+  g_state.out->bits.push_back(static_cast<uint8_t>(b));
 }
 
-void direct(int count) {
-  if (g_state.out) g_state.out->direct_bits += static_cast<uint64_t>(count);
+void direct(int count, uint32_t v) {
+  if (!g_state.out) return;
+  g_state.out->direct_bits += static_cast<uint64_t>(count);
+  g_state.out->directs.push_back(v);
 }
 
 }  // namespace prm::codec::entropy_trace

@@ -42,6 +42,8 @@ struct Capture {
   std::vector<size_t> block_sizes;     // bytes of each range-coded block, in decoding order
   uint64_t decisions = 0;              // §5.3 modelled decisions of the whole decode
   uint64_t direct_bits = 0;            // §5.4 direct bits of the whole decode
+  std::vector<uint8_t> bits;           // every decision, in decoding order (for the oracle, oracle_decode.h)
+  std::vector<uint32_t> directs;       // every decode_direct's value, in decoding order
   uint32_t signed_models = 0, sign_models = 0;
   size_t vertices = 0, triangles = 0;  // of the decoded mesh
 };

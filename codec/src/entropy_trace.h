@@ -1,7 +1,9 @@
-// A bench-only hook for the entropy-layer study (bench/entropy_study/, bench/README.md "hdecode8"): the values the
-// decoder's range-coded sections yield, with their contexts. Compiled to nothing unless PRM_ENTROPY_TRACE is defined;
-// the library, the CLI and the wasm module never define it (only the study's own copy of the decoder objects does),
-// so their code and behaviour are unchanged.
+// Bench-only hooks for the entropy-layer study (bench/entropy_study/, bench/README.md "hdecode8"), compiled to nothing
+// unless PRM_ENTROPY_TRACE or PRM_ENTROPY_ORACLE is defined. The library, the CLI and the wasm module never define
+// them (only the study's own copies of the decoder objects do), so their code and behaviour are unchanged.
+//   PRM_ENTROPY_TRACE:  the values the decoder's range-coded sections yield, with their contexts, and every decision.
+//   PRM_ENTROPY_ORACLE: the range decoder hands out a traced decode's decisions and direct bits from memory, with no
+//                       arithmetic and no model update: the decode then costs what everything but §5 costs.
 #pragma once
 
 #if defined(PRM_ENTROPY_TRACE)
@@ -15,17 +17,32 @@ namespace prm::codec::entropy_trace {
 //   clers:      §6.5.1 a CLERS symbol with its context; s_possible: the S decision was coded (two or more pieces)
 //   residual:   §10.4.1 a position residual; ctx = axis * kResidualContexts + context; up, down: its bounds
 //   signed_int: §9.5 a signed integer with its SignedIntModel, its sign model and max_class
-//   bit:        one modelled decision of any kind (§5.3);  direct: `count` direct bits (§5.4)
+//   bit:        one modelled decision of any kind (§5.3);  direct: `count` direct bits of value v (§5.4)
 void block(size_t size);
 void clers(uint32_t ctx, uint32_t symbol, int s_possible);
 void residual(uint32_t ctx, int64_t r, int64_t up, int64_t down);
 void signed_int(const void* model, const void* sign, int max_class, int64_t v);
-void bit();
-void direct(int count);
+void bit(uint32_t b);
+void direct(int count, uint32_t v);
 
 }  // namespace prm::codec::entropy_trace
 
 #define PRM_ENTROPY_TRACE_CALL(call) ::prm::codec::entropy_trace::call
 #else
 #define PRM_ENTROPY_TRACE_CALL(call) ((void)0)
+#endif
+
+#if defined(PRM_ENTROPY_ORACLE)
+#include <cstdint>
+
+namespace prm::codec::entropy_trace {
+extern const uint8_t* oracle_bits;     // the next decision
+extern const uint32_t* oracle_direct;  // the next decode_direct's value
+}  // namespace prm::codec::entropy_trace
+
+#define PRM_ENTROPY_ORACLE_BIT() return static_cast<int>(*::prm::codec::entropy_trace::oracle_bits++)
+#define PRM_ENTROPY_ORACLE_DIRECT() return *::prm::codec::entropy_trace::oracle_direct++
+#else
+#define PRM_ENTROPY_ORACLE_BIT() ((void)0)
+#define PRM_ENTROPY_ORACLE_DIRECT() ((void)0)
 #endif

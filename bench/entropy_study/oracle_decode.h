@@ -1,0 +1,18 @@
+// hdecode8: the decoder with an oracle for §5 (codec/src/entropy_trace.h, PRM_ENTROPY_ORACLE): the range decoder
+// hands out a captured decode's decisions and direct-bit values from memory, so the decode costs everything but the
+// range coder's arithmetic and model updates. Compiled in namespace prm_oracle (bench/CMakeLists.txt).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+#include "trace_capture.h"
+
+namespace entropy_study {
+
+// Decodes `data` with the capture's decisions; false if it fails. positions, triangles: the decoded mesh.
+bool oracle_decode(const uint8_t* data, size_t size, const Capture& capture, std::vector<float>& positions,
+                   std::vector<uint32_t>& triangles);
+
+}  // namespace entropy_study
