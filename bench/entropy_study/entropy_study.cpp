@@ -7,14 +7,15 @@
 // and each scheme's decoders are timed (CPU time of the thread, rounds alternating the schemes, best kept) on exactly
 // those values, with the contexts taken from the capture. Every decode is checked against the capture.
 // Second table: the whole decode (prm::codec::decode, the library's objects) against the same decoder with an oracle
-// for §5 (oracle_decode.h: the captured decisions handed out with no arithmetic), alternating; the difference is what
-// the range coder's arithmetic and model updates cost inside the real decode.
+// for §5 (oracle_decode.h: the captured decisions handed out with no arithmetic) and with a value oracle (CLERS
+// symbols, residuals and §9.5 integers handed out whole, the other decisions as before), alternating: what the range
+// coder's arithmetic and model updates, and what the whole entropy layer, cost inside the real decode.
 //
 //   prm_bench_entropy_study [--rounds=N] FILE.prm...   table (markdown) of bytes and decode time per kind and scheme
 //   prm_bench_entropy_study --check FILE.prm...        round trips only; exit 1 if a scheme mis-decodes a value
 //   prm_bench_entropy_study --profile=WHAT:N FILE...   no timing, for callgrind: WHAT today, static or pooled decodes
-//                                                      every kind N times with that scheme; real or oracle decodes
-//                                                      the whole stream N times
+//                                                      every kind N times with that scheme; real, oracle or values
+//                                                      decodes the whole stream N times
 // Exit codes: 0 ok, 1 a scheme mis-decoded (or a capture's own replay did not match), 2 bad usage or unreadable stream.
 #include <algorithm>
 #include <cstdio>
@@ -140,8 +141,13 @@ std::string base_name(const std::string& path) {
   return slash == std::string::npos ? path : path.substr(slash + 1);
 }
 
-// The library's decode of a stream, positions and triangles out.
-bool real_decode(const std::vector<uint8_t>& bytes, std::vector<float>& positions, std::vector<uint32_t>& triangles) {
+// The whole decode: the library's, with the §5 oracle, with the value oracle (oracle_decode.h).
+enum Whole { kReal, kOracle, kValues, kWholes };
+const char* const kWholeArg[kWholes] = {"real", "oracle", "values"};
+bool whole_decode(Whole w, const std::vector<uint8_t>& bytes, const Capture& c, std::vector<float>& positions,
+                  std::vector<uint32_t>& triangles) {
+  if (w == kOracle) return oracle_decode(bytes.data(), bytes.size(), c, positions, triangles);
+  if (w == kValues) return value_oracle_decode(bytes.data(), bytes.size(), c, positions, triangles);
   auto decoded = prm::codec::decode(bytes.data(), bytes.size());
   if (!decoded.ok()) return false;
   positions = std::move(decoded.value.positions_f32);
@@ -152,7 +158,7 @@ bool real_decode(const std::vector<uint8_t>& bytes, std::vector<float>& position
 int run(int argc, char** argv) {
   int rounds = 15, profile = 0;
   bool check_only = false;
-  int profile_what = kToday;  // a Scheme, or kSchemes (real) or kSchemes + 1 (oracle)
+  int profile_what = kToday;  // a Scheme, or kSchemes + a Whole
   std::vector<std::string> files;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -166,9 +172,10 @@ int run(int argc, char** argv) {
       const std::string what = v.substr(0, colon);
       int s = 0;
       while (s < kSchemes && what != kSchemeArg[s]) ++s;
-      if (what == "real" || what == "oracle") s = what == "real" ? kSchemes : kSchemes + 1;
-      if (colon == std::string::npos || (s == kSchemes && what != "real")) {
-        std::fprintf(stderr, "--profile=WHAT:N with WHAT today, static, pooled, real or oracle\n");
+      if (s == kSchemes)
+        while (s < kSchemes + kWholes && what != kWholeArg[s - kSchemes]) ++s;
+      if (colon == std::string::npos || s == kSchemes + kWholes) {
+        std::fprintf(stderr, "--profile=WHAT:N with WHAT today, static, pooled, real, oracle or values\n");
         return 2;
       }
       profile_what = s;
@@ -177,7 +184,7 @@ int run(int argc, char** argv) {
       files.push_back(a);
     } else {
       std::fprintf(a == "--help" || a == "-h" ? stdout : stderr,
-                   "usage: %s [--rounds=N | --check | --profile=today|static|pooled|real|oracle:N] FILE.prm...\n"
+                   "usage: %s [--rounds=N | --check | --profile=today|static|pooled|real|oracle|values:N] FILE.prm...\n"
                    "exit codes: 0 ok, 1 a scheme mis-decoded, 2 bad usage or unreadable stream\n",
                    argv[0]);
       return a == "--help" || a == "-h" ? 0 : 2;
@@ -212,11 +219,12 @@ int run(int argc, char** argv) {
         }
     std::vector<float> real_p, oracle_p;
     std::vector<uint32_t> real_t, oracle_t;
-    if (!real_decode(bytes, real_p, real_t) || !oracle_decode(bytes.data(), bytes.size(), cap, oracle_p, oracle_t) ||
-        real_p != oracle_p || real_t != oracle_t) {
-      std::fprintf(stderr, "%s: the oracle's decode differs from the real one\n", file.c_str());
-      exact = false;
-    }
+    if (!whole_decode(kReal, bytes, cap, real_p, real_t)) exact = false;
+    for (Whole w : {kOracle, kValues})
+      if (!whole_decode(w, bytes, cap, oracle_p, oracle_t) || real_p != oracle_p || real_t != oracle_t) {
+        std::fprintf(stderr, "%s: the %s oracle's decode differs from the real one\n", file.c_str(), kWholeArg[w]);
+        exact = false;
+      }
     if (!exact) status = 1;
     Work all;
     for (int k = 0; k < kKinds; ++k) {
@@ -239,10 +247,8 @@ int run(int argc, char** argv) {
     if (check_only) continue;
     if (profile) {
       for (int r = 0; r < profile; ++r) {
-        if (profile_what == kSchemes)
-          real_decode(bytes, real_p, real_t);
-        else if (profile_what == kSchemes + 1)
-          oracle_decode(bytes.data(), bytes.size(), cap, oracle_p, oracle_t);
+        if (profile_what >= kSchemes)
+          whole_decode(static_cast<Whole>(profile_what - kSchemes), bytes, cap, oracle_p, oracle_t);
         else
           for (int k = 0; k < kKinds; ++k) st.decode(static_cast<Scheme>(profile_what), static_cast<Kind>(k));
       }
@@ -265,26 +271,26 @@ int run(int argc, char** argv) {
           inner[s][k] = static_cast<int>(std::clamp(0.02 / std::max(t, 1e-9), 1.0, 1e5));
         }
       }
-    // The whole decode, real and with the oracle, alternating (the first one rotates).
-    double best_whole[2] = {1e30, 1e30};
-    int inner_whole[2] = {1, 1};
+    // The whole decode, real and with the two oracles, alternating (the first one rotates).
+    double best_whole[kWholes] = {1e30, 1e30, 1e30};
+    int inner_whole[kWholes] = {1, 1, 1};
     for (int r = 0; r < rounds; ++r)
-      for (int i = 0; i < 2; ++i) {
-        const int w = (i + r) % 2;
+      for (int i = 0; i < kWholes; ++i) {
+        const Whole w = static_cast<Whole>((i + r) % kWholes);
         const double t0 = prm::bench::thread_cpu_seconds();
-        for (int n = 0; n < inner_whole[w]; ++n)
-          (void)(w == 0 ? real_decode(bytes, real_p, real_t)
-                        : oracle_decode(bytes.data(), bytes.size(), cap, oracle_p, oracle_t));
+        for (int n = 0; n < inner_whole[w]; ++n) (void)whole_decode(w, bytes, cap, oracle_p, oracle_t);
         const double t = (prm::bench::thread_cpu_seconds() - t0) / inner_whole[w];
         best_whole[w] = std::min(best_whole[w], t);
         inner_whole[w] = static_cast<int>(std::clamp(0.05 / std::max(t, 1e-9), 1.0, 1e5));
       }
     const double nv = static_cast<double>(cap.vertices);
+    const double real = best_whole[kReal] * 1e9 / nv, oracle = best_whole[kOracle] * 1e9 / nv,
+                 values = best_whole[kValues] * 1e9 / nv;
     char row[512];
-    std::snprintf(row, sizeof row, "| %s | %zu | %llu + %llu | %.1f | %.1f | %.1f | %.0f%% |\n", base_name(file).c_str(),
-                  cap.vertices, static_cast<unsigned long long>(cap.decisions),
-                  static_cast<unsigned long long>(cap.direct_bits), best_whole[0] * 1e9 / nv, best_whole[1] * 1e9 / nv,
-                  (best_whole[0] - best_whole[1]) * 1e9 / nv, 100.0 * (best_whole[0] - best_whole[1]) / best_whole[0]);
+    std::snprintf(row, sizeof row, "| %s | %zu | %llu + %llu | %.1f | %.1f (%.0f%%) | %.1f (%.0f%%) |\n",
+                  base_name(file).c_str(), cap.vertices, static_cast<unsigned long long>(cap.decisions),
+                  static_cast<unsigned long long>(cap.direct_bits), real, oracle, 100.0 * (real - oracle) / real,
+                  values, 100.0 * (real - values) / real);
     oracle_rows.push_back(row);
     for (int s = 0; s < kSchemes; ++s) {
       double total_ns = 0;
@@ -308,8 +314,8 @@ int run(int argc, char** argv) {
     std::fflush(stdout);
   }
   if (!oracle_rows.empty()) {
-    std::printf("\n| stream | V | decisions + direct bits | decode ns/vertex | with the §5 oracle | difference | of the decode "
-                "|\n|---|---:|---:|---:|---:|---:|---:|\n");
+    std::printf("\n| stream | V | decisions + direct bits | decode ns/vertex | with the §5 oracle (saved) | with the value "
+                "oracle (saved) |\n|---|---:|---:|---:|---:|---:|\n");
     for (const std::string& row : oracle_rows) std::printf("%s", row.c_str());
   }
   return status;

@@ -1,4 +1,5 @@
-// The oracle's side of codec/src/entropy_trace.h (compiled with PRM_ENTROPY_ORACLE, namespace prm read prm_oracle).
+// The oracles' side of codec/src/entropy_trace.h, compiled twice: with PRM_ENTROPY_ORACLE (namespace prm read
+// prm_oracle; oracle_decode) and with PRM_ENTROPY_VALUE_ORACLE as well (prm_values; value_oracle_decode).
 #include "oracle_decode.h"
 
 #include "entropy_trace.h"
@@ -7,17 +8,37 @@
 namespace prm::codec::entropy_trace {
 const uint8_t* oracle_bits = nullptr;
 const uint32_t* oracle_direct = nullptr;
+const uint8_t* oracle_clers = nullptr;
+const int64_t* oracle_residual = nullptr;
+const int64_t* oracle_signed = nullptr;
 }  // namespace prm::codec::entropy_trace
 
 namespace entropy_study {
 
+#if defined(PRM_ENTROPY_VALUE_ORACLE)
+bool value_oracle_decode(const uint8_t* data, size_t size, const Capture& capture, std::vector<float>& positions,
+                         std::vector<uint32_t>& triangles) {
+  const std::vector<uint8_t>& bits = capture.other_bits;
+  const std::vector<uint32_t>& directs = capture.other_directs;
+#else
 bool oracle_decode(const uint8_t* data, size_t size, const Capture& capture, std::vector<float>& positions,
                    std::vector<uint32_t>& triangles) {
-  prm::codec::entropy_trace::oracle_bits = capture.bits.data();
-  prm::codec::entropy_trace::oracle_direct = capture.directs.data();
+  const std::vector<uint8_t>& bits = capture.bits;
+  const std::vector<uint32_t>& directs = capture.directs;
+#endif
+  namespace t = prm::codec::entropy_trace;
+  t::oracle_bits = bits.data();
+  t::oracle_direct = directs.data();
+  t::oracle_clers = capture.clers_symbols.data();
+  t::oracle_residual = capture.residual_values.data();
+  t::oracle_signed = capture.signed_values.data();
   auto decoded = prm::codec::decode(data, size);
-  const bool all_used = prm::codec::entropy_trace::oracle_bits == capture.bits.data() + capture.bits.size() &&
-                        prm::codec::entropy_trace::oracle_direct == capture.directs.data() + capture.directs.size();
+  bool all_used = t::oracle_bits == bits.data() + bits.size() && t::oracle_direct == directs.data() + directs.size();
+#if defined(PRM_ENTROPY_VALUE_ORACLE)
+  all_used = all_used && t::oracle_clers == capture.clers_symbols.data() + capture.clers_symbols.size() &&
+             t::oracle_residual == capture.residual_values.data() + capture.residual_values.size() &&
+             t::oracle_signed == capture.signed_values.data() + capture.signed_values.size();
+#endif
   if (!decoded.ok() || !all_used) return false;
   positions = std::move(decoded.value.positions_f32);
   triangles = std::move(decoded.value.triangles);

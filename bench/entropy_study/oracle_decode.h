@@ -11,8 +11,12 @@
 
 namespace entropy_study {
 
-// Decodes `data` with the capture's decisions; false if it fails. positions, triangles: the decoded mesh.
+// Decodes `data` with the capture's decisions; false if it fails or leaves some unused. positions, triangles: the
+// decoded mesh.
 bool oracle_decode(const uint8_t* data, size_t size, const Capture& capture, std::vector<float>& positions,
                    std::vector<uint32_t>& triangles);
+// The same with the captured values handed out whole (PRM_ENTROPY_VALUE_ORACLE, namespace prm_values).
+bool value_oracle_decode(const uint8_t* data, size_t size, const Capture& capture, std::vector<float>& positions,
+                         std::vector<uint32_t>& triangles);
 
 }  // namespace entropy_study

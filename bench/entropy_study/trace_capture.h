@@ -44,6 +44,10 @@ struct Capture {
   uint64_t direct_bits = 0;            // §5.4 direct bits of the whole decode
   std::vector<uint8_t> bits;           // every decision, in decoding order (for the oracle, oracle_decode.h)
   std::vector<uint32_t> directs;       // every decode_direct's value, in decoding order
+  std::vector<uint8_t> other_bits;     // the same outside the captured values (for the value oracle)
+  std::vector<uint32_t> other_directs;
+  std::vector<uint8_t> clers_symbols;  // the captured values alone (for the value oracle)
+  std::vector<int64_t> residual_values, signed_values;
   uint32_t signed_models = 0, sign_models = 0;
   size_t vertices = 0, triangles = 0;  // of the decoded mesh
 };

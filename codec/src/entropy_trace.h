@@ -4,6 +4,9 @@
 //   PRM_ENTROPY_TRACE:  the values the decoder's range-coded sections yield, with their contexts, and every decision.
 //   PRM_ENTROPY_ORACLE: the range decoder hands out a traced decode's decisions and direct bits from memory, with no
 //                       arithmetic and no model update: the decode then costs what everything but §5 costs.
+//   PRM_ENTROPY_VALUE_ORACLE (with PRM_ENTROPY_ORACLE): CLERS symbols, position residuals and §9.5 integers are
+//                       handed out whole as well (no binarization, no Rice state), the other decisions as above: the
+//                       decode then costs what everything but the entropy layer costs.
 #pragma once
 
 #if defined(PRM_ENTROPY_TRACE)
@@ -17,11 +20,13 @@ namespace prm::codec::entropy_trace {
 //   clers:      §6.5.1 a CLERS symbol with its context; s_possible: the S decision was coded (two or more pieces)
 //   residual:   §10.4.1 a position residual; ctx = axis * kResidualContexts + context; up, down: its bounds
 //   signed_int: §9.5 a signed integer with its SignedIntModel, its sign model and max_class
+//   value_begin: one of the three above starts (its decisions are not "other" decisions)
 //   bit:        one modelled decision of any kind (§5.3);  direct: `count` direct bits of value v (§5.4)
 void block(size_t size);
 void clers(uint32_t ctx, uint32_t symbol, int s_possible);
 void residual(uint32_t ctx, int64_t r, int64_t up, int64_t down);
 void signed_int(const void* model, const void* sign, int max_class, int64_t v);
+void value_begin();
 void bit(uint32_t b);
 void direct(int count, uint32_t v);
 
@@ -38,6 +43,9 @@ void direct(int count, uint32_t v);
 namespace prm::codec::entropy_trace {
 extern const uint8_t* oracle_bits;     // the next decision
 extern const uint32_t* oracle_direct;  // the next decode_direct's value
+extern const uint8_t* oracle_clers;    // with PRM_ENTROPY_VALUE_ORACLE: the next CLERS symbol,
+extern const int64_t* oracle_residual; // position residual
+extern const int64_t* oracle_signed;   // and §9.5 integer
 }  // namespace prm::codec::entropy_trace
 
 #define PRM_ENTROPY_ORACLE_BIT() return static_cast<int>(*::prm::codec::entropy_trace::oracle_bits++)
@@ -45,4 +53,12 @@ extern const uint32_t* oracle_direct;  // the next decode_direct's value
 #else
 #define PRM_ENTROPY_ORACLE_BIT() ((void)0)
 #define PRM_ENTROPY_ORACLE_DIRECT() ((void)0)
+#endif
+
+// PRM_ENTROPY_VALUE(kind, x): true after setting x to the oracle's next value of `kind` (clers, residual, signed);
+// false (and no code) in every other build.
+#if defined(PRM_ENTROPY_VALUE_ORACLE)
+#define PRM_ENTROPY_VALUE(kind, x) ((x = *::prm::codec::entropy_trace::oracle_##kind++), true)
+#else
+#define PRM_ENTROPY_VALUE(kind, x) false
 #endif

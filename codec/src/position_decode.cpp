@@ -17,6 +17,8 @@ inline bool decode_residual(RangeDecoder& rc, ResidualModels& m, int axis, int c
                             int64_t& r) {
   r = 0;
   if (up + down == 0) return true;
+  PRM_ENTROPY_TRACE_CALL(value_begin());
+  if (PRM_ENTROPY_VALUE(residual, r)) return true;
   RiceState& rice = m.rice[axis][ctx];
   const int k = rice.k();
   BitModel* unary = m.unary[axis][ctx];

@@ -84,6 +84,8 @@ inline double signed_cost_bits(const SignedIntModel& m, int64_t v) { return sign
 // Returns false (and leaves v = 0) when the class exceeds max_class: the caller's bound on the magnitude.
 PRM_WASM_INLINE bool decode_signed(RangeDecoder& rc, SignedIntModel& m, int max_class, int64_t& v, BitModel& sign) {
   v = 0;
+  PRM_ENTROPY_TRACE_CALL(value_begin());
+  if (PRM_ENTROPY_VALUE(signed, v)) return true;
   if (rc.decode_bit(m.zero)) {
     PRM_ENTROPY_TRACE_CALL(signed_int(&m, &sign, max_class, 0));
     return true;
