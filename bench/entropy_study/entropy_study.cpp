@@ -9,13 +9,15 @@
 // Second table: the whole decode (prm::codec::decode, the library's objects) against the same decoder with an oracle
 // for §5 (oracle_decode.h: the captured decisions handed out with no arithmetic) and with a value oracle (CLERS
 // symbols, residuals and §9.5 integers handed out whole, the other decisions as before), alternating: what the range
-// coder's arithmetic and model updates, and what the whole entropy layer, cost inside the real decode.
+// coder's arithmetic and model updates, and what the whole entropy layer, cost inside the real decode; and with the
+// values decoded by schemes (b) and (c) inside the decoder (rans_in_situ.h; the few other decisions from the oracle).
 //
 //   prm_bench_entropy_study [--rounds=N] FILE.prm...   table (markdown) of bytes and decode time per kind and scheme
 //   prm_bench_entropy_study --check FILE.prm...        round trips only; exit 1 if a scheme mis-decodes a value
 //   prm_bench_entropy_study --profile=WHAT:N FILE...   no timing, for callgrind: WHAT today, static or pooled decodes
-//                                                      every kind N times with that scheme; real, oracle or values
-//                                                      decodes the whole stream N times
+//                                                      every kind N times with that scheme; real, oracle, values,
+//                                                      static-in-decoder or pooled-in-decoder decodes the whole
+//                                                      stream N times
 // Exit codes: 0 ok, 1 a scheme mis-decoded (or a capture's own replay did not match), 2 bad usage or unreadable stream.
 #include <algorithm>
 #include <cstdio>
@@ -83,6 +85,8 @@ struct Study {
   ResidualCoder residual_b{Contexts::today}, residual_c{Contexts::pooled};
   SignedCoder signed_b, signed_c;
   StaticStream stat[2][kKinds];
+  std::vector<uint32_t> dense[2][kKinds + 1];  // per value, the dense context of (b), (c); last: the signs'
+  in_situ::Input in_situ_input[2];              // (b), (c) inside the decoder (rans_in_situ.h)
   std::vector<uint8_t> out_clers;
   std::vector<int64_t> out_values;
 
@@ -96,6 +100,28 @@ struct Study {
     stat[1][kResiduals] = residual_c.encode(c.residuals);
     stat[0][kSigned] = signed_b.encode(c.signed_ints);
     stat[1][kSigned] = signed_c.encode(c.signed_ints);
+    for (int s = 0; s < 2; ++s) {
+      const Contexts k = s == 0 ? Contexts::today : Contexts::pooled;
+      const ClersCoder& cc = s == 0 ? clers_b : clers_c;
+      const ResidualCoder& rc = s == 0 ? residual_b : residual_c;
+      const SignedCoder& sc = s == 0 ? signed_b : signed_c;
+      for (const ClersValue& v : c.clers) dense[s][kClers].push_back(cc.tables.dense(clers_context(v, k)));
+      for (const ResidualValue& v : c.residuals) dense[s][kResiduals].push_back(rc.tables.dense(residual_context(v, k)));
+      for (const SignedValue& v : c.signed_ints) {
+        dense[s][kSigned].push_back(sc.magnitudes.dense(v.model));
+        if (v.v != 0) dense[s][kKinds].push_back(sc.signs.dense(v.sign));
+      }
+      in_situ::KindStream* ks[kKinds] = {&in_situ_input[s].clers, &in_situ_input[s].residual,
+                                         &in_situ_input[s].signed_int};
+      const StaticTables* tables[kKinds] = {&cc.tables, &rc.tables, &sc.magnitudes};
+      for (int kind = 0; kind < kKinds; ++kind) {
+        const StaticStream& st = stat[s][kind];
+        *ks[kind] = {st.words.data(), st.words.size(), st.raw.data(), st.raw.size(), tables[kind],
+                     dense[s][kind].data(), nullptr, nullptr};
+      }
+      in_situ_input[s].signed_int.signs = &sc.signs;
+      in_situ_input[s].signed_int.sign_ctx = dense[s][kKinds].data();
+    }
     out_clers.resize(c.clers.size());
     out_values.resize(std::max(c.residuals.size(), c.signed_ints.size()));
   }
@@ -141,13 +167,18 @@ std::string base_name(const std::string& path) {
   return slash == std::string::npos ? path : path.substr(slash + 1);
 }
 
-// The whole decode: the library's, with the §5 oracle, with the value oracle (oracle_decode.h).
-enum Whole { kReal, kOracle, kValues, kWholes };
-const char* const kWholeArg[kWholes] = {"real", "oracle", "values"};
-bool whole_decode(Whole w, const std::vector<uint8_t>& bytes, const Capture& c, std::vector<float>& positions,
+// The whole decode: the library's, with the §5 oracle, with the value oracle, with schemes (b) and (c) inside
+// (oracle_decode.h).
+enum Whole { kReal, kOracle, kValues, kRansB, kRansC, kWholes };
+const char* const kWholeArg[kWholes] = {"real", "oracle", "values", "static-in-decoder", "pooled-in-decoder"};
+bool whole_decode(Whole w, const std::vector<uint8_t>& bytes, const Study& st, std::vector<float>& positions,
                   std::vector<uint32_t>& triangles) {
+  const Capture& c = st.c;
   if (w == kOracle) return oracle_decode(bytes.data(), bytes.size(), c, positions, triangles);
   if (w == kValues) return value_oracle_decode(bytes.data(), bytes.size(), c, positions, triangles);
+  if (w == kRansB || w == kRansC)
+    return rans_in_situ_decode(bytes.data(), bytes.size(), c, st.in_situ_input[w == kRansB ? 0 : 1], positions,
+                               triangles);
   auto decoded = prm::codec::decode(bytes.data(), bytes.size());
   if (!decoded.ok()) return false;
   positions = std::move(decoded.value.positions_f32);
@@ -175,7 +206,7 @@ int run(int argc, char** argv) {
       if (s == kSchemes)
         while (s < kSchemes + kWholes && what != kWholeArg[s - kSchemes]) ++s;
       if (colon == std::string::npos || s == kSchemes + kWholes) {
-        std::fprintf(stderr, "--profile=WHAT:N with WHAT today, static, pooled, real, oracle or values\n");
+        std::fprintf(stderr, "--profile=WHAT:N: see --help\n");
         return 2;
       }
       profile_what = s;
@@ -184,7 +215,9 @@ int run(int argc, char** argv) {
       files.push_back(a);
     } else {
       std::fprintf(a == "--help" || a == "-h" ? stdout : stderr,
-                   "usage: %s [--rounds=N | --check | --profile=today|static|pooled|real|oracle|values:N] FILE.prm...\n"
+                   "usage: %s [--rounds=N | --check | --profile=WHAT:N] FILE.prm...\n"
+                   "  WHAT: today, static, pooled (the entropy values alone), real, oracle, values, static-in-decoder,\n"
+                   "  pooled-in-decoder (the whole decode)\n"
                    "exit codes: 0 ok, 1 a scheme mis-decoded, 2 bad usage or unreadable stream\n",
                    argv[0]);
       return a == "--help" || a == "-h" ? 0 : 2;
@@ -219,9 +252,9 @@ int run(int argc, char** argv) {
         }
     std::vector<float> real_p, oracle_p;
     std::vector<uint32_t> real_t, oracle_t;
-    if (!whole_decode(kReal, bytes, cap, real_p, real_t)) exact = false;
-    for (Whole w : {kOracle, kValues})
-      if (!whole_decode(w, bytes, cap, oracle_p, oracle_t) || real_p != oracle_p || real_t != oracle_t) {
+    if (!whole_decode(kReal, bytes, st, real_p, real_t)) exact = false;
+    for (Whole w : {kOracle, kValues, kRansB, kRansC})
+      if (!whole_decode(w, bytes, st, oracle_p, oracle_t) || real_p != oracle_p || real_t != oracle_t) {
         std::fprintf(stderr, "%s: the %s oracle's decode differs from the real one\n", file.c_str(), kWholeArg[w]);
         exact = false;
       }
@@ -248,7 +281,7 @@ int run(int argc, char** argv) {
     if (profile) {
       for (int r = 0; r < profile; ++r) {
         if (profile_what >= kSchemes)
-          whole_decode(static_cast<Whole>(profile_what - kSchemes), bytes, cap, oracle_p, oracle_t);
+          whole_decode(static_cast<Whole>(profile_what - kSchemes), bytes, st, oracle_p, oracle_t);
         else
           for (int k = 0; k < kKinds; ++k) st.decode(static_cast<Scheme>(profile_what), static_cast<Kind>(k));
       }
@@ -272,25 +305,30 @@ int run(int argc, char** argv) {
         }
       }
     // The whole decode, real and with the two oracles, alternating (the first one rotates).
-    double best_whole[kWholes] = {1e30, 1e30, 1e30};
-    int inner_whole[kWholes] = {1, 1, 1};
+    double best_whole[kWholes];
+    int inner_whole[kWholes];
+    std::fill(best_whole, best_whole + kWholes, 1e30);
+    std::fill(inner_whole, inner_whole + kWholes, 1);
     for (int r = 0; r < rounds; ++r)
       for (int i = 0; i < kWholes; ++i) {
         const Whole w = static_cast<Whole>((i + r) % kWholes);
         const double t0 = prm::bench::thread_cpu_seconds();
-        for (int n = 0; n < inner_whole[w]; ++n) (void)whole_decode(w, bytes, cap, oracle_p, oracle_t);
+        for (int n = 0; n < inner_whole[w]; ++n) (void)whole_decode(w, bytes, st, oracle_p, oracle_t);
         const double t = (prm::bench::thread_cpu_seconds() - t0) / inner_whole[w];
         best_whole[w] = std::min(best_whole[w], t);
         inner_whole[w] = static_cast<int>(std::clamp(0.05 / std::max(t, 1e-9), 1.0, 1e5));
       }
     const double nv = static_cast<double>(cap.vertices);
-    const double real = best_whole[kReal] * 1e9 / nv, oracle = best_whole[kOracle] * 1e9 / nv,
-                 values = best_whole[kValues] * 1e9 / nv;
+    double ns[kWholes];
+    for (int w = 0; w < kWholes; ++w) ns[w] = best_whole[w] * 1e9 / nv;
+    const double real = ns[kReal];
     char row[512];
-    std::snprintf(row, sizeof row, "| %s | %zu | %llu + %llu | %.1f | %.1f (%.0f%%) | %.1f (%.0f%%) |\n",
+    std::snprintf(row, sizeof row,
+                  "| %s | %zu | %llu + %llu | %.1f | %.1f (%.0f%%) | %.1f (%.0f%%) | %.1f (%.0f%%) | %.1f (%.0f%%) |\n",
                   base_name(file).c_str(), cap.vertices, static_cast<unsigned long long>(cap.decisions),
-                  static_cast<unsigned long long>(cap.direct_bits), real, oracle, 100.0 * (real - oracle) / real,
-                  values, 100.0 * (real - values) / real);
+                  static_cast<unsigned long long>(cap.direct_bits), real, ns[kOracle],
+                  100.0 * (real - ns[kOracle]) / real, ns[kValues], 100.0 * (real - ns[kValues]) / real, ns[kRansB],
+                  100.0 * (real - ns[kRansB]) / real, ns[kRansC], 100.0 * (real - ns[kRansC]) / real);
     oracle_rows.push_back(row);
     for (int s = 0; s < kSchemes; ++s) {
       double total_ns = 0;
@@ -315,7 +353,7 @@ int run(int argc, char** argv) {
   }
   if (!oracle_rows.empty()) {
     std::printf("\n| stream | V | decisions + direct bits | decode ns/vertex | with the §5 oracle (saved) | with the value "
-                "oracle (saved) |\n|---|---:|---:|---:|---:|---:|\n");
+                "oracle (saved) | with (b) inside (saved) | with (c) inside (saved) |\n|---|---:|---:|---:|---:|---:|---:|---:|\n");
     for (const std::string& row : oracle_rows) std::printf("%s", row.c_str());
   }
   return status;

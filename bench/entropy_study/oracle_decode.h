@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "rans_in_situ.h"
 #include "trace_capture.h"
 
 namespace entropy_study {
@@ -18,5 +19,8 @@ bool oracle_decode(const uint8_t* data, size_t size, const Capture& capture, std
 // The same with the captured values handed out whole (PRM_ENTROPY_VALUE_ORACLE, namespace prm_values).
 bool value_oracle_decode(const uint8_t* data, size_t size, const Capture& capture, std::vector<float>& positions,
                          std::vector<uint32_t>& triangles);
+// The same with those values decoded from a static rANS scheme's streams (PRM_ENTROPY_RANS, namespace prm_rans).
+bool rans_in_situ_decode(const uint8_t* data, size_t size, const Capture& capture, const in_situ::Input& input,
+                         std::vector<float>& positions, std::vector<uint32_t>& triangles);
 
 }  // namespace entropy_study

@@ -129,7 +129,11 @@ class RansEncoder {
 
 class RansDecoder {
  public:
-  RansDecoder(const uint16_t* words, size_t n) : p_(words), end_(words + n) {
+  RansDecoder() = default;
+  RansDecoder(const uint16_t* words, size_t n) { reset(words, n); }
+  void reset(const uint16_t* words, size_t n) {
+    p_ = words;
+    end_ = words + n;
     for (auto& s : x_) s = uint32_t{word()} << 16 | word();
   }
   // The next symbol, decoded on state `lane` with one context's tables.
@@ -147,9 +151,9 @@ class RansDecoder {
 
  private:
   inline uint16_t word() { return p_ < end_ ? *p_++ : 0; }
-  const uint16_t* p_;
-  const uint16_t* end_;
-  uint32_t x_[2];
+  const uint16_t* p_ = nullptr;
+  const uint16_t* end_ = nullptr;
+  uint32_t x_[2] = {0, 0};
 };
 
 // Raw bits, most significant first.
@@ -174,7 +178,14 @@ class BitWriter {
 
 class BitReader {
  public:
-  BitReader(const uint8_t* p, size_t n) : p_(p), end_(p + n) {}
+  BitReader() = default;
+  BitReader(const uint8_t* p, size_t n) { reset(p, n); }
+  void reset(const uint8_t* p, size_t n) {
+    p_ = p;
+    end_ = p + n;
+    buf_ = 0;
+    n_ = 0;
+  }
   // 1..32 bits.
   inline uint32_t get(int count) {
     if (n_ < count) refill();
@@ -192,8 +203,8 @@ class BitReader {
       n_ += 8;
     }
   }
-  const uint8_t* p_;
-  const uint8_t* end_;
+  const uint8_t* p_ = nullptr;
+  const uint8_t* end_ = nullptr;
   uint64_t buf_ = 0;
   int n_ = 0;
 };

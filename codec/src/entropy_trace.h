@@ -7,6 +7,8 @@
 //   PRM_ENTROPY_VALUE_ORACLE (with PRM_ENTROPY_ORACLE): CLERS symbols, position residuals and §9.5 integers are
 //                       handed out whole as well (no binarization, no Rice state), the other decisions as above: the
 //                       decode then costs what everything but the entropy layer costs.
+//   PRM_ENTROPY_RANS (with both oracles): those values are decoded from the study's static rANS streams instead
+//                       (bench/entropy_study/rans_in_situ.h): a faster entropy layer inside the real decoder.
 #pragma once
 
 #if defined(PRM_ENTROPY_TRACE)
@@ -57,7 +59,10 @@ extern const int64_t* oracle_signed;   // and §9.5 integer
 
 // PRM_ENTROPY_VALUE(kind, x): true after setting x to the oracle's next value of `kind` (clers, residual, signed);
 // false (and no code) in every other build.
-#if defined(PRM_ENTROPY_VALUE_ORACLE)
+#if defined(PRM_ENTROPY_RANS)
+#include "rans_in_situ.h"
+#define PRM_ENTROPY_VALUE(kind, x) ((x = ::entropy_study::in_situ::next_##kind()), true)
+#elif defined(PRM_ENTROPY_VALUE_ORACLE)
 #define PRM_ENTROPY_VALUE(kind, x) ((x = *::prm::codec::entropy_trace::oracle_##kind++), true)
 #else
 #define PRM_ENTROPY_VALUE(kind, x) false
