@@ -20,6 +20,7 @@
 //                                                      stream N times
 // Exit codes: 0 ok, 1 a scheme mis-decoded (or a capture's own replay did not match), 2 bad usage or unreadable stream.
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
@@ -37,6 +38,16 @@
 
 namespace entropy_study {
 namespace {
+
+// CPU seconds of the thread natively; emscripten has no thread CPU clock, so the wasm build (bench/README.md,
+// "hdecode8") reads the monotonic wall clock.
+double seconds() {
+#if defined(__EMSCRIPTEN__)
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+#else
+  return prm::bench::thread_cpu_seconds();
+#endif
+}
 
 enum Kind { kClers, kResiduals, kSigned, kKinds };
 const char* const kKindName[kKinds] = {"CLERS", "residuals", "signed ints"};
@@ -297,9 +308,9 @@ int run(int argc, char** argv) {
         const Scheme s = static_cast<Scheme>((i + r) % kSchemes);
         for (int k = 0; k < kKinds; ++k) {
           if (st.values(static_cast<Kind>(k)) == 0) continue;
-          const double t0 = prm::bench::thread_cpu_seconds();
+          const double t0 = seconds();
           for (int n = 0; n < inner[s][k]; ++n) st.decode(s, static_cast<Kind>(k));
-          const double t = (prm::bench::thread_cpu_seconds() - t0) / inner[s][k];
+          const double t = (seconds() - t0) / inner[s][k];
           best[s][k] = std::min(best[s][k], t);
           inner[s][k] = static_cast<int>(std::clamp(0.02 / std::max(t, 1e-9), 1.0, 1e5));
         }
@@ -312,9 +323,9 @@ int run(int argc, char** argv) {
     for (int r = 0; r < rounds; ++r)
       for (int i = 0; i < kWholes; ++i) {
         const Whole w = static_cast<Whole>((i + r) % kWholes);
-        const double t0 = prm::bench::thread_cpu_seconds();
+        const double t0 = seconds();
         for (int n = 0; n < inner_whole[w]; ++n) (void)whole_decode(w, bytes, st, oracle_p, oracle_t);
-        const double t = (prm::bench::thread_cpu_seconds() - t0) / inner_whole[w];
+        const double t = (seconds() - t0) / inner_whole[w];
         best_whole[w] = std::min(best_whole[w], t);
         inner_whole[w] = static_cast<int>(std::clamp(0.05 / std::max(t, 1e-9), 1.0, 1e5));
       }
