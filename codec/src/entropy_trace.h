@@ -57,8 +57,9 @@ extern const int64_t* oracle_signed;   // and §9.5 integer
 #define PRM_ENTROPY_ORACLE_DIRECT() ((void)0)
 #endif
 
-// PRM_ENTROPY_VALUE(kind, x): true after setting x to the oracle's next value of `kind` (clers, residual, signed);
-// false (and no code) in every other build.
+// PRM_ENTROPY_VALUE(kind, x): true after setting x to the value oracle's next value of `kind` (clers, residual,
+// signed); false (and no code) in every other build. PRM_ENTROPY_RETURN_VALUE(kind, x): the same as a statement that
+// returns true, nothing at all in every other build (a dead `if (false) return` still moved GCC's block layout).
 #if defined(PRM_ENTROPY_RANS)
 #include "rans_in_situ.h"
 #define PRM_ENTROPY_VALUE(kind, x) ((x = ::entropy_study::in_situ::next_##kind()), true)
@@ -66,4 +67,13 @@ extern const int64_t* oracle_signed;   // and §9.5 integer
 #define PRM_ENTROPY_VALUE(kind, x) ((x = *::prm::codec::entropy_trace::oracle_##kind++), true)
 #else
 #define PRM_ENTROPY_VALUE(kind, x) false
+#endif
+#if defined(PRM_ENTROPY_VALUE_ORACLE)
+#define PRM_ENTROPY_RETURN_VALUE(kind, x) \
+  do {                                    \
+    (void)PRM_ENTROPY_VALUE(kind, x);     \
+    return true;                          \
+  } while (0)
+#else
+#define PRM_ENTROPY_RETURN_VALUE(kind, x) ((void)0)
 #endif

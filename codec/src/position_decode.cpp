@@ -18,7 +18,7 @@ inline bool decode_residual(RangeDecoder& rc, ResidualModels& m, int axis, int c
   r = 0;
   if (up + down == 0) return true;
   PRM_ENTROPY_TRACE_CALL(value_begin());
-  if (PRM_ENTROPY_VALUE(residual, r)) return true;
+  PRM_ENTROPY_RETURN_VALUE(residual, r);
   RiceState& rice = m.rice[axis][ctx];
   const int k = rice.k();
   BitModel* unary = m.unary[axis][ctx];

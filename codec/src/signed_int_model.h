@@ -85,7 +85,7 @@ inline double signed_cost_bits(const SignedIntModel& m, int64_t v) { return sign
 PRM_WASM_INLINE bool decode_signed(RangeDecoder& rc, SignedIntModel& m, int max_class, int64_t& v, BitModel& sign) {
   v = 0;
   PRM_ENTROPY_TRACE_CALL(value_begin());
-  if (PRM_ENTROPY_VALUE(signed, v)) return true;
+  PRM_ENTROPY_RETURN_VALUE(signed, v);
   if (rc.decode_bit(m.zero)) {
     PRM_ENTROPY_TRACE_CALL(signed_int(&m, &sign, max_class, 0));
     return true;
