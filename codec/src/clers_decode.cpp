@@ -200,7 +200,9 @@ Status decode_symbols(const uint8_t* clers, size_t clers_size, uint64_t clers_of
       uint32_t seam;
       const uint32_t count = sr.gate_start(seam_context, seam);
       BitModel* m = models->m[clers_context(prev1, prev2, count, seam)];
-      if (!rc.decode_bit(m[0])) {
+      PRM_ENTROPY_TRACE_CALL(value_begin());
+      if (PRM_ENTROPY_VALUE(clers, s)) {
+      } else if (!rc.decode_bit(m[0])) {
         s = kC;
       } else if (!rc.decode_bit(m[1])) {
         s = kR;
@@ -209,6 +211,7 @@ Status decode_symbols(const uint8_t* clers, size_t clers_size, uint64_t clers_of
       } else {
         s = rc.decode_bit(m[3]) ? kE : kL;
       }
+      PRM_ENTROPY_TRACE_CALL(clers(clers_context(prev1, prev2, count, seam), s, depth >= 2));
       if (rc.failed()) return fail("5.5");
     }
     if (!sr.apply(i, s)) return fail("6.4");

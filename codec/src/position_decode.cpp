@@ -4,6 +4,7 @@
 
 #include "position.h"
 #include "position_shared.h"
+#include "entropy_trace.h"
 #include "range_decoder.h"
 #include "status.h"
 
@@ -16,6 +17,8 @@ inline bool decode_residual(RangeDecoder& rc, ResidualModels& m, int axis, int c
                             int64_t& r) {
   r = 0;
   if (up + down == 0) return true;
+  PRM_ENTROPY_TRACE_CALL(value_begin());
+  PRM_ENTROPY_RETURN_VALUE(residual, r);
   RiceState& rice = m.rice[axis][ctx];
   const int k = rice.k();
   BitModel* unary = m.unary[axis][ctx];
@@ -40,6 +43,7 @@ inline bool decode_residual(RangeDecoder& rc, ResidualModels& m, int axis, int c
   if (magnitude > static_cast<uint64_t>((u & 1) ? down : up)) return false;
   rice.update(static_cast<uint32_t>(magnitude));
   r = (u & 1) ? -static_cast<int64_t>(magnitude) : static_cast<int64_t>(magnitude);
+  PRM_ENTROPY_TRACE_CALL(residual(static_cast<uint32_t>(axis * kResidualContexts + ctx), r, up, down));
   return true;
 }
 

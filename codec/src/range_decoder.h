@@ -10,6 +10,7 @@
 
 #include "adaptive_model.h"
 #include "always_inline.h"
+#include "entropy_trace.h"
 
 namespace prm::codec {
 
@@ -21,6 +22,7 @@ class RangeDecoder {
 
   // §5.3 One bit with model m.
   PRM_ALWAYS_INLINE int decode_bit(BitModel& m) {
+    PRM_ENTROPY_ORACLE_BIT();
     // Written without data-dependent branches: the bit is as unpredictable as the data.
     const uint32_t p = m.p;
     const uint32_t bound = (range_ >> kProbBits) * p;
@@ -30,11 +32,13 @@ class RangeDecoder {
     range_ = bit ? range_ - bound : bound;
     m.update(bit);
     normalize();
+    PRM_ENTROPY_TRACE_CALL(bit(bit));
     return static_cast<int>(bit);
   }
 
   // §5.4 `count` (0..24) equiprobable bits, most significant first.
   PRM_ALWAYS_INLINE uint32_t decode_direct(int count) {
+    PRM_ENTROPY_ORACLE_DIRECT();
     uint32_t v = 0;
     for (int i = 0; i < count; ++i) {
       range_ >>= 1;
@@ -43,6 +47,7 @@ class RangeDecoder {
       v = v << 1 | bit;
       normalize();
     }
+    PRM_ENTROPY_TRACE_CALL(direct(count, v));
     return v;
   }
 

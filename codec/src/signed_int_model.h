@@ -10,6 +10,7 @@
 #include <cstdint>
 
 #include "adaptive_model.h"
+#include "entropy_trace.h"
 #include "range_decoder.h"
 #include "range_encoder.h"
 
@@ -83,7 +84,12 @@ inline double signed_cost_bits(const SignedIntModel& m, int64_t v) { return sign
 // Returns false (and leaves v = 0) when the class exceeds max_class: the caller's bound on the magnitude.
 PRM_WASM_INLINE bool decode_signed(RangeDecoder& rc, SignedIntModel& m, int max_class, int64_t& v, BitModel& sign) {
   v = 0;
-  if (rc.decode_bit(m.zero)) return true;
+  PRM_ENTROPY_TRACE_CALL(value_begin());
+  PRM_ENTROPY_RETURN_VALUE(signed, v);
+  if (rc.decode_bit(m.zero)) {
+    PRM_ENTROPY_TRACE_CALL(signed_int(&m, &sign, max_class, 0));
+    return true;
+  }
   const bool negative = rc.decode_bit(sign) != 0;
   int e = 0;
   while (e < kMaxClass && rc.decode_bit(m.cls[e])) ++e;
@@ -97,6 +103,7 @@ PRM_WASM_INLINE bool decode_signed(RangeDecoder& rc, SignedIntModel& m, int max_
     }
   }
   v = negative ? -static_cast<int64_t>(mag) : static_cast<int64_t>(mag);
+  PRM_ENTROPY_TRACE_CALL(signed_int(&m, &sign, max_class, v));
   return true;
 }
 
