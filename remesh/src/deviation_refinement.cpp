@@ -439,7 +439,8 @@ bool flip_straying_edge(Mesh& m, const std::vector<std::vector<uint32_t>>& verte
 // costs more bytes). False when no move is kept.
 bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, const PrmMesh& prm,
                      const AabbTree& input_tree, const DeviationRefinementOptions& options, double bound2,
-                     std::vector<uint8_t>& touched, std::vector<uint8_t>& moved, const Deviation& d) {
+                     std::vector<uint8_t>& touched, std::vector<uint8_t>& moved, const std::vector<uint8_t>& boundary,
+                     const Deviation& d) {
   const Tri t = m.triangles[d.face];
   std::array<uint32_t, 3> order = {t[0], t[1], t[2]};
   std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
@@ -453,6 +454,7 @@ bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_f
     const bool lattice = v < prm.vertex_relief.size() && prm.vertex_relief[v] >= 0;
     if (lattice && (!options.lattice_moves || (!mesh_point && !options.lattice_reach))) continue;
     if (v >= moved.size() || moved[v] >= kMaxMoves) continue;  // inserted in this round, or moved enough
+    if (v < boundary.size() && boundary[v]) continue;  // the input's boundary stays where it is
     const std::vector<uint32_t>& faces = vertex_faces[v];
     if (std::any_of(faces.begin(), faces.end(), [&](uint32_t f) { return touched[f] != 0; })) continue;
     std::vector<Vec3> normals;
@@ -511,8 +513,9 @@ bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_f
 // closest point turned a face over).
 bool descend_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, PrmMesh& prm,
                     const AabbTree& input_tree, const DeviationRefinementOptions& options,
-                    std::vector<uint8_t>& touched, const Deviation& d) {
+                    std::vector<uint8_t>& touched, const std::vector<uint8_t>& boundary, const Deviation& d) {
   const uint32_t v = d.vertex;
+  if (v < boundary.size() && boundary[v]) return false;  // the input's boundary stays where it is
   const std::vector<uint32_t>& faces = vertex_faces[v];
   if (std::any_of(faces.begin(), faces.end(), [&](uint32_t f) { return touched[f] != 0; })) return false;
   const std::vector<Tri> tris = triangles_of(m, faces);
@@ -826,6 +829,22 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
   if (!(options.max_deviation > 0) || input.positions.empty()) return st;
   Mesh& m = prm.mesh;
   const size_t first_inserted = m.positions.size();
+  // The vertices on the mesh's boundary (an open input's loops) are not moved: h22max8, with the refinement made the
+  // default, the rim moves took elephant-with-holes' boundary vertices 19.7 quantization steps off the input's
+  // boundary (PackOpenBoundaryReal). New vertices are never on the boundary (an edge split needs the face across).
+  std::vector<uint8_t> boundary(m.positions.size(), 0);
+  {
+    std::vector<std::array<uint32_t, 2>> edges;
+    for (const Tri& t : m.triangles)
+      for (int k = 0; k < 3; ++k) edges.push_back({std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])});
+    std::sort(edges.begin(), edges.end());
+    for (size_t i = 0; i < edges.size();) {
+      size_t j = i;
+      while (j < edges.size() && edges[j] == edges[i]) ++j;
+      if (j - i == 1) boundary[edges[i][0]] = boundary[edges[i][1]] = 1;
+      i = j;
+    }
+  }
   const size_t budget = static_cast<size_t>(options.max_insert_share * static_cast<double>(m.positions.size()));
   std::vector<uint8_t> used(input.positions.size(), 0);
   for (const Tri& t : input.triangles)
@@ -969,13 +988,13 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
       if (st.inserted >= budget) break;
       if (touched[d.face]) continue;
       if (options.thin_sheets &&
-          move_rim_vertex(m, vertex_faces, prm, input_tree, options, bound2, touched, moved, d)) {
+          move_rim_vertex(m, vertex_faces, prm, input_tree, options, bound2, touched, moved, boundary, d)) {
         ++st.moved;
         ++inserted_this_round;
         continue;
       }
       if (d.input_vertex == kMeshVertex && options.thin_sheets && options.descent_placement &&
-          descend_vertex(m, vertex_faces, prm, input_tree, options, touched, d)) {
+          descend_vertex(m, vertex_faces, prm, input_tree, options, touched, boundary, d)) {
         ++st.moved;
         ++inserted_this_round;
         continue;
