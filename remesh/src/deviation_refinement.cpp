@@ -439,7 +439,8 @@ bool flip_straying_edge(Mesh& m, const std::vector<std::vector<uint32_t>>& verte
 // costs more bytes). False when no move is kept.
 bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, const PrmMesh& prm,
                      const AabbTree& input_tree, const DeviationRefinementOptions& options, double bound2,
-                     std::vector<uint8_t>& touched, std::vector<uint8_t>& moved, const Deviation& d) {
+                     std::vector<uint8_t>& touched, std::vector<uint8_t>& moved, const std::vector<uint8_t>& boundary,
+                     const Deviation& d) {
   const Tri t = m.triangles[d.face];
   std::array<uint32_t, 3> order = {t[0], t[1], t[2]};
   std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
@@ -453,6 +454,7 @@ bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_f
     const bool lattice = v < prm.vertex_relief.size() && prm.vertex_relief[v] >= 0;
     if (lattice && (!options.lattice_moves || (!mesh_point && !options.lattice_reach))) continue;
     if (v >= moved.size() || moved[v] >= kMaxMoves) continue;  // inserted in this round, or moved enough
+    if (v < boundary.size() && boundary[v]) continue;  // the input's boundary stays where it is
     const std::vector<uint32_t>& faces = vertex_faces[v];
     if (std::any_of(faces.begin(), faces.end(), [&](uint32_t f) { return touched[f] != 0; })) continue;
     std::vector<Vec3> normals;
@@ -511,8 +513,9 @@ bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_f
 // closest point turned a face over).
 bool descend_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, PrmMesh& prm,
                     const AabbTree& input_tree, const DeviationRefinementOptions& options,
-                    std::vector<uint8_t>& touched, const Deviation& d) {
+                    std::vector<uint8_t>& touched, const std::vector<uint8_t>& boundary, const Deviation& d) {
   const uint32_t v = d.vertex;
+  if (v < boundary.size() && boundary[v]) return false;  // the input's boundary stays where it is
   const std::vector<uint32_t>& faces = vertex_faces[v];
   if (std::any_of(faces.begin(), faces.end(), [&](uint32_t f) { return touched[f] != 0; })) return false;
   const std::vector<Tri> tris = triangles_of(m, faces);
@@ -561,7 +564,263 @@ void probe_worst(const AabbTree& tree, const Vec3& x, bool hinted, AabbTree::Hit
   }
 }
 
+
+// The worst squared distance to the input of triangle (a, b, c)'s probes on its grid_divisions grid and on its
+// fine_grid_divisions grid (the two the refinement measures a face on near the bound).
+// prune_inserted: how far from a fan's faces (x the bound) the input is measured again.
+constexpr double kPruneReach = 2;
+double fine_probe_deviation2(const Vec3& a, const Vec3& b, const Vec3& c, const AabbTree& input_tree, double bound) {
+  double worst = 0;
+  AabbTree::Hit hint;
+  const auto visit = [&](const Vec3& x) {
+    input_tree.closest(x, hint);
+    worst = std::max(worst, hint.distance2);
+  };
+  for_each_grid_point(a, b, c, grid_divisions(a, b, c, bound), visit);
+  for_each_grid_point(a, b, c, fine_grid_divisions(a, b, c, bound), visit);
+  return worst;
+}
+
+// DeviationRefinementOptions::prune (h22max8): each vertex inserted by the rounds (index first_inserted and up), oldest
+// first, whose triangles form a fan of 3 (a split in three) or 4 (an edge split) around it, is removed and its ring
+// triangulated again (a quad: the diagonal that strays least) when, with the vertex gone, the new triangles' probes
+// (both grids) and the input near them (the input vertices closest to the fan's triangles, and the input triangles
+// around those, on their grid_divisions grids) stay within the bound: later rounds' moves and insertions nearby may
+// have made it unneeded, and it costs the stream an irregular vertex and its regular patch. The input's distance is
+// an upper bound (the new triangles, or the closest face at the start when no removal changed it), so a removal
+// never passes on a figure lower than the true one. `stale` and `probe_hit` (per face) follow the faces; the
+// removed fans' new triangles are stale. Returns the number removed.
+size_t prune_inserted(Mesh& m, const QuantFrame& frame, size_t first_inserted, const Mesh& input,
+                      const AabbTree& input_tree, double bound, std::vector<uint8_t>& stale,
+                      std::vector<AabbTree::Hit>& probe_hit) {
+  if (m.positions.size() <= first_inserted) return 0;
+  const double bound2 = bound * bound;
+  std::vector<std::vector<uint32_t>> vertex_faces(m.positions.size());
+  for (uint32_t f = 0; f < m.triangles.size(); ++f)
+    for (uint32_t v : m.triangles[f]) vertex_faces[v].push_back(f);
+  // in>pr: the input near the fans (the faces around the inserted vertices): its vertices and the input triangles
+  // with a probe (their grid_divisions grids) within kPruneReach x the bound of a fan's face, by that closest fan
+  // face at the start. A superset of those whose closest face is a fan's face, but for the input already farther
+  // than kPruneReach x the bound from the mesh there (h22max8: measuring all the input against the whole mesh cost
+  // the feline 0.6 s CPU).
+  const AabbTree tree(m);
+  std::vector<uint32_t> fan_face_ids;
+  std::vector<Tri> fan_tris;
+  for (uint32_t f = 0; f < m.triangles.size(); ++f) {
+    const Tri& t = m.triangles[f];
+    if (t[0] >= first_inserted || t[1] >= first_inserted || t[2] >= first_inserted)
+      fan_face_ids.push_back(f), fan_tris.push_back(t);
+  }
+  const AabbTree fan_tree(m.positions, fan_tris);
+  const double reach2 = kPruneReach * kPruneReach * bound2;
+  std::vector<uint8_t> used(input.positions.size(), 0);
+  std::vector<std::vector<uint32_t>> input_vertex_faces(input.positions.size());
+  for (uint32_t f = 0; f < input.triangles.size(); ++f)
+    for (uint32_t v : input.triangles[f]) used[v] = 1, input_vertex_faces[v].push_back(f);
+  std::vector<AabbTree::Hit> hits(input.positions.size());
+  tbb::parallel_for(size_t{0}, input.positions.size(), [&](size_t v) {
+    if (used[v]) hits[v] = fan_tree.closest(input.positions[v], reach2);
+  });
+  std::vector<std::vector<uint32_t>> attached(m.triangles.size());
+  for (uint32_t v = 0; v < hits.size(); ++v)
+    if (hits[v].found()) attached[fan_face_ids[hits[v].face]].push_back(v);
+  std::vector<std::vector<uint32_t>> probe_faces(input.triangles.size());
+  tbb::parallel_for(size_t{0}, input.triangles.size(), [&](size_t f) {
+    const Tri& t = input.triangles[f];
+    const Vec3 &a = input.positions[t[0]], &b = input.positions[t[1]], &c = input.positions[t[2]];
+    std::vector<uint32_t>& out = probe_faces[f];
+    for_each_grid_point(a, b, c, grid_divisions(a, b, c, bound), [&](const Vec3& x) {
+      const AabbTree::Hit h = fan_tree.closest(x, reach2);
+      if (h.found() && std::find(out.begin(), out.end(), fan_face_ids[h.face]) == out.end())
+        out.push_back(fan_face_ids[h.face]);
+    });
+  });
+  std::vector<std::vector<uint32_t>> attached_faces(m.triangles.size());
+  for (uint32_t f = 0; f < probe_faces.size(); ++f)
+    for (uint32_t g : probe_faces[f]) attached_faces[g].push_back(f);
+  probe_faces = {};
+  std::vector<uint8_t> changed(m.triangles.size(), 0), dead(m.triangles.size(), 0), removed(m.positions.size(), 0);
+  // The distance of input point p to the mesh with `tris` in place of the fan: at most this.
+  const auto input_distance2 = [&](const Vec3& p, const std::vector<Tri>& tris) {
+    double d = std::numeric_limits<double>::infinity();
+    for (const Tri& t : tris)
+      d = std::min(d, point_triangle_distance2(p, m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]));
+    if (d > bound2) {
+      const AabbTree::Hit h = tree.closest(p);
+      if (h.found() && !changed[h.face]) d = std::min(d, h.distance2);
+    }
+    return d;
+  };
+  size_t count = 0;
+  for (uint32_t v = static_cast<uint32_t>(first_inserted); v < m.positions.size(); ++v) {
+    const std::vector<uint32_t> faces = vertex_faces[v];
+    if (faces.size() != 3 && faces.size() != 4) continue;
+    // The ring: each face (v, a, b) in its order gives the ring's edge a -> b.
+    std::vector<std::array<uint32_t, 2>> edges;
+    for (uint32_t f : faces) {
+      const Tri& t = m.triangles[f];
+      const size_t k = t[0] == v ? 0 : t[1] == v ? 1 : 2;
+      edges.push_back({t[(k + 1) % 3], t[(k + 2) % 3]});
+    }
+    std::vector<uint32_t> ring = {edges[0][0], edges[0][1]};
+    bool closed = false;
+    while (ring.size() <= faces.size()) {
+      const auto next = std::find_if(edges.begin(), edges.end(), [&](const auto& e) { return e[0] == ring.back(); });
+      if (next == edges.end()) break;
+      if ((*next)[1] == ring[0]) {
+        closed = ring.size() == faces.size();
+        break;
+      }
+      ring.push_back((*next)[1]);
+    }
+    if (!closed) continue;
+    // An edge between ring vertices a and b outside the fan (a new triangle there would repeat it).
+    const auto has_edge = [&](uint32_t a, uint32_t b) {
+      for (uint32_t f : vertex_faces[a]) {
+        if (std::find(faces.begin(), faces.end(), f) != faces.end()) continue;
+        const Tri& t = m.triangles[f];
+        if (t[0] == b || t[1] == b || t[2] == b) return true;
+      }
+      return false;
+    };
+    std::vector<std::vector<Tri>> ways;
+    if (faces.size() == 3) {
+      bool elsewhere = false;  // the triangle itself outside the fan (a tetrahedron's)
+      for (uint32_t f : vertex_faces[ring[0]]) {
+        const Tri& t = m.triangles[f];
+        const auto in = [&](uint32_t x) { return t[0] == x || t[1] == x || t[2] == x; };
+        elsewhere = elsewhere || (std::find(faces.begin(), faces.end(), f) == faces.end() && in(ring[1]) && in(ring[2]));
+      }
+      if (!elsewhere) ways.push_back({{ring[0], ring[1], ring[2]}});
+    } else {
+      if (!has_edge(ring[0], ring[2])) ways.push_back({{ring[0], ring[1], ring[2]}, {ring[0], ring[2], ring[3]}});
+      if (!has_edge(ring[1], ring[3])) ways.push_back({{ring[1], ring[2], ring[3]}, {ring[1], ring[3], ring[0]}});
+    }
+    Vec3 old_normal = {0, 0, 0};
+    for (uint32_t f : faces) old_normal = old_normal + face_normal(m, m.triangles[f]);
+    // The input near the fan: its attached vertices, and the input triangles around them.
+    std::vector<uint32_t> near_vertices, near_faces;
+    for (uint32_t f : faces) near_vertices.insert(near_vertices.end(), attached[f].begin(), attached[f].end());
+    std::sort(near_vertices.begin(), near_vertices.end());
+    near_vertices.erase(std::unique(near_vertices.begin(), near_vertices.end()), near_vertices.end());
+    for (uint32_t u : near_vertices)
+      near_faces.insert(near_faces.end(), input_vertex_faces[u].begin(), input_vertex_faces[u].end());
+    for (uint32_t f : faces) near_faces.insert(near_faces.end(), attached_faces[f].begin(), attached_faces[f].end());
+    std::sort(near_faces.begin(), near_faces.end());
+    near_faces.erase(std::unique(near_faces.begin(), near_faces.end()), near_faces.end());
+    // The fan's faces go: the start's closest face is no bound where it is one of them.
+    std::vector<uint8_t> was_changed;
+    for (uint32_t f : faces) was_changed.push_back(changed[f]), changed[f] = 1;
+    // The worst squared distance with `tris` in place of the fan (stops once past `limit`).
+    const auto worst_of = [&](const std::vector<Tri>& tris, double limit) {
+      double worst = 0;
+      for (const Tri& t : tris) {
+        worst = std::max(worst, fine_probe_deviation2(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]],
+                                                      input_tree, bound));
+        if (worst > limit) return worst;
+      }
+      for (size_t i = 0; i < near_vertices.size() && worst <= limit; ++i)
+        worst = std::max(worst, input_distance2(input.positions[near_vertices[i]], tris));
+      for (size_t i = 0; i < near_faces.size() && worst <= limit; ++i) {
+        const Tri& t = input.triangles[near_faces[i]];
+        const Vec3 &a = input.positions[t[0]], &b = input.positions[t[1]], &c = input.positions[t[2]];
+        for_each_grid_point(a, b, c, grid_divisions(a, b, c, bound),
+                            [&](const Vec3& x) { worst = std::max(worst, input_distance2(x, tris)); });
+      }
+      return worst;
+    };
+    // The same with the fan's vertices at their nearest rounding (the stream's; round_towards_input only takes
+    // another where it strays less).
+    const auto rounded_worst_of = [&](const std::vector<Tri>& tris, double limit) {
+      std::vector<uint32_t> fan = ring;
+      fan.push_back(v);
+      std::vector<Vec3> kept;
+      for (uint32_t u : fan) {
+        kept.push_back(m.positions[u]);
+        for (int a = 0; a < 3; ++a) {
+          const size_t k = static_cast<size_t>(a);
+          m.positions[u][k] = frame.to_real(static_cast<double>(frame.quantize(m.positions[u][k], a)), a);
+        }
+      }
+      const double worst = worst_of(tris, limit);
+      for (size_t i = 0; i < fan.size(); ++i) m.positions[fan[i]] = kept[i];
+      return worst;
+    };
+    const double rounded_limit =
+        std::max(bound2, rounded_worst_of(triangles_of(m, faces), std::numeric_limits<double>::infinity()));
+    const std::vector<Tri>* best = nullptr;
+    double best_worst = bound2;
+    for (const std::vector<Tri>& tris : ways) {
+      if (!faces_agree(m, old_normal, tris)) continue;
+      const double worst = worst_of(tris, best_worst);
+      if (worst <= best_worst && rounded_worst_of(tris, rounded_limit) <= rounded_limit)
+        best = &tris, best_worst = worst;
+    }
+    if (best == nullptr) {
+      for (size_t i = 0; i < faces.size(); ++i) changed[faces[i]] = was_changed[i];
+      continue;
+    }
+    // The fan's first faces hold the new triangles, the others go.
+    std::vector<uint32_t> merged, merged_faces;
+    for (uint32_t f : faces) {
+      merged.insert(merged.end(), attached[f].begin(), attached[f].end());
+      merged_faces.insert(merged_faces.end(), attached_faces[f].begin(), attached_faces[f].end());
+      changed[f] = 1;
+      for (uint32_t r : m.triangles[f]) {
+        auto& list = vertex_faces[r];
+        list.erase(std::remove(list.begin(), list.end(), f), list.end());
+      }
+    }
+    for (size_t i = 0; i < faces.size(); ++i) {
+      if (i < best->size()) {
+        m.triangles[faces[i]] = (*best)[i];
+        for (uint32_t r : (*best)[i]) vertex_faces[r].push_back(faces[i]);
+        attached[faces[i]] = merged;
+        attached_faces[faces[i]] = merged_faces;
+      } else {
+        dead[faces[i]] = 1;
+        attached[faces[i]].clear();
+        attached_faces[faces[i]].clear();
+      }
+    }
+    removed[v] = 1;
+    ++count;
+  }
+  if (count == 0) return 0;
+  // Compaction: the dead faces go, the removed vertices (all inserted) go and the later ones move down.
+  std::vector<uint32_t> vertex_index(m.positions.size());
+  uint32_t next = 0;
+  for (uint32_t v = 0; v < m.positions.size(); ++v) {
+    vertex_index[v] = next;
+    if (!removed[v]) m.positions[next++] = m.positions[v];
+  }
+  m.positions.resize(next);
+  stale.resize(m.triangles.size(), 1);
+  probe_hit.resize(m.triangles.size());
+  size_t kept = 0;
+  for (size_t f = 0; f < m.triangles.size(); ++f) {
+    if (dead[f]) continue;
+    Tri t = m.triangles[f];
+    for (uint32_t& x : t) x = vertex_index[x];
+    m.triangles[kept] = t;
+    stale[kept] = changed[f] ? 1 : stale[f];
+    probe_hit[kept] = probe_hit[f];
+    ++kept;
+  }
+  m.triangles.resize(kept);
+  stale.resize(kept);
+  probe_hit.resize(kept);
+  return count;
+}
+
 }  // namespace
+
+size_t prune_inserted_vertices(PrmMesh& prm, size_t first_inserted, const Mesh& input, const AabbTree& input_tree,
+                               double bound) {
+  std::vector<uint8_t> stale(prm.mesh.triangles.size(), 0);
+  std::vector<AabbTree::Hit> probe_hit(prm.mesh.triangles.size());
+  return prune_inserted(prm.mesh, prm.frame, first_inserted, input, input_tree, bound, stale, probe_hit);
+}
 
 DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, const AabbTree& input_tree,
                                            const DeviationRefinementOptions& options,
@@ -569,6 +828,23 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
   DeviationRefinementStats st;
   if (!(options.max_deviation > 0) || input.positions.empty()) return st;
   Mesh& m = prm.mesh;
+  const size_t first_inserted = m.positions.size();
+  // The vertices on the mesh's boundary (an open input's loops) are not moved: h22max8, with the refinement made the
+  // default, the rim moves took elephant-with-holes' boundary vertices 19.7 quantization steps off the input's
+  // boundary (PackOpenBoundaryReal). New vertices are never on the boundary (an edge split needs the face across).
+  std::vector<uint8_t> boundary(m.positions.size(), 0);
+  {
+    std::vector<std::array<uint32_t, 2>> edges;
+    for (const Tri& t : m.triangles)
+      for (int k = 0; k < 3; ++k) edges.push_back({std::min(t[k], t[(k + 1) % 3]), std::max(t[k], t[(k + 1) % 3])});
+    std::sort(edges.begin(), edges.end());
+    for (size_t i = 0; i < edges.size();) {
+      size_t j = i;
+      while (j < edges.size() && edges[j] == edges[i]) ++j;
+      if (j - i == 1) boundary[edges[i][0]] = boundary[edges[i][1]] = 1;
+      i = j;
+    }
+  }
   const size_t budget = static_cast<size_t>(options.max_insert_share * static_cast<double>(m.positions.size()));
   std::vector<uint8_t> used(input.positions.size(), 0);
   for (const Tri& t : input.triangles)
@@ -712,13 +988,13 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
       if (st.inserted >= budget) break;
       if (touched[d.face]) continue;
       if (options.thin_sheets &&
-          move_rim_vertex(m, vertex_faces, prm, input_tree, options, bound2, touched, moved, d)) {
+          move_rim_vertex(m, vertex_faces, prm, input_tree, options, bound2, touched, moved, boundary, d)) {
         ++st.moved;
         ++inserted_this_round;
         continue;
       }
       if (d.input_vertex == kMeshVertex && options.thin_sheets && options.descent_placement &&
-          descend_vertex(m, vertex_faces, prm, input_tree, options, touched, d)) {
+          descend_vertex(m, vertex_faces, prm, input_tree, options, touched, boundary, d)) {
         ++st.moved;
         ++inserted_this_round;
         continue;
@@ -742,6 +1018,10 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
     if (inserted_this_round == 0) break;
     stale = std::move(touched);
     stale.resize(m.triangles.size(), 1);
+  }
+  if (options.prune && options.thin_sheets && options.dense_probes) {
+    st.pruned = prune_inserted(m, prm.frame, first_inserted, input, input_tree, options.max_deviation, stale, probe_hit);
+    st.inserted -= std::min(st.inserted, st.pruned);
   }
   // The faces' worst probes for round_towards_input (the faces the last round changed measured again).
   if (face_deviation2 != nullptr && options.thin_sheets && options.dense_probes && !probe_hit.empty()) {

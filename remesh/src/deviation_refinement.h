@@ -54,6 +54,9 @@ struct DeviationRefinementOptions {
   // A mesh triangle whose dense probes come within 0.9x the bound is probed again on a grid twice as fine (needs
   // dense_probes; h22max6: the horse's worst place lay between the probes of a face at 0.99x the bound).
   bool fine_probes = true;
+  // After the rounds, an inserted vertex whose fan of 3 or 4 triangles can be triangulated again without it, within
+  // the bound, is removed (h22max8: needs thin_sheets and dense_probes).
+  bool prune = true;
 };
 
 struct DeviationRefinementStats {
@@ -62,6 +65,7 @@ struct DeviationRefinementStats {
   size_t flipped = 0;   // edges flipped for a straying mesh point
   size_t moved = 0;     // vertex moves: irregular ones (a rim), lattice ones along their axis (their height)
   size_t rounds = 0;
+  size_t pruned = 0;    // inserted vertices removed again (DeviationRefinementOptions::prune; `inserted` is net)
 };
 
 // prm: a merged PRM with its labels (the new vertices and triangles are labelled; all triangles are relabelled).
@@ -72,6 +76,12 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
                                            const DeviationRefinementOptions& options,
                                            std::vector<double>* face_deviation2 = nullptr);
 
+// DeviationRefinementOptions::prune on its own (refine_deviations runs it after its rounds): prm's vertices from
+// first_inserted on, each with a fan of 3 or 4 triangles, removed where the fan's ring triangulated again stays within
+// `bound` (model units) of the input, with the fan's vertices unrounded and at their nearest rounding to prm.frame's
+// step (there no worse than before, or within the bound). Returns how many were removed; prm's labels are not set.
+size_t prune_inserted_vertices(PrmMesh& prm, size_t first_inserted, const Mesh& input, const AabbTree& input_tree,
+                               double bound);
 // After the refinement: the vertices near places straying more than 0.75x `bound` (model units) are put on the way of
 // rounding them to prm.frame's step whose triangles and the vertex itself stray least from the input (the stream
 // holds rounded coordinates; a lattice coordinate stays). Returns how many were put elsewhere than their nearest rounding.

@@ -334,4 +334,56 @@ TEST(DeviationRefinement, FinerProbesSeeAPlaceBetweenTheProbes) {
   }
 }
 
+
+// DeviationRefinementOptions::prune (h22max8): an inserted vertex whose fan can be triangulated again within the bound
+// goes (a split in three, valence 3, and an edge split, valence 4, of a flat square on a flat input); one that holds
+// the mesh on an input spike stays.
+TEST(DeviationRefinement, PruneRemovesAnInsertedVertexOnlyWhereTheBoundHoldsWithoutIt) {
+  const auto frame_of = [](PrmMesh& prm) {
+    prm.frame.bits = 8;
+    prm.frame.origin = {-5.0, -5.0, -5.0};
+    prm.frame.step = 1.0;
+  };
+  const Vec3 centroid = {5.0 / 3, -5.0 / 3, 0.0};  // of the square's triangle (0, 1, 2)
+  for (const bool edge : {false, true}) {
+    const Mesh input = square(0.0, 5.0);
+    const AabbTree tree(input);
+    PrmMesh prm;
+    frame_of(prm);
+    prm.mesh = square(0.0, 5.0);
+    if (edge) {  // edge 0-2 split at its midpoint
+      prm.mesh.positions.push_back({0.0, 0.0, 0.0});
+      prm.mesh.triangles = {{0, 1, 4}, {4, 1, 2}, {0, 4, 3}, {4, 2, 3}};
+    } else {
+      prm.mesh.positions.push_back(centroid);
+      prm.mesh.triangles = {{0, 1, 4}, {1, 2, 4}, {2, 0, 4}, {0, 2, 3}};
+    }
+    const size_t removed = prune_inserted_vertices(prm, 4, input, tree, 0.1);
+    std::printf("%s on a flat input: %zu removed, %zu triangles\n", edge ? "edge split" : "split in three", removed,
+                prm.mesh.triangles.size());
+    EXPECT_EQ(removed, 1u);
+    EXPECT_EQ(prm.mesh.positions.size(), 4u);
+    ASSERT_EQ(prm.mesh.triangles.size(), 2u);
+    for (const Tri& t : prm.mesh.triangles) {  // facing up, as the square did
+      const Vec3 n = triangle_normal_area2(prm.mesh.positions[t[0]], prm.mesh.positions[t[1]], prm.mesh.positions[t[2]]);
+      EXPECT_GT(n[2], 0.0);
+    }
+  }
+  // The input rises to a spike 3 above the centroid, and the inserted vertex is on it: without it the input's tip
+  // would be 3 from the mesh, far past the bound.
+  Mesh input = square(0.0, 5.0);
+  input.positions.push_back(centroid + Vec3{0.0, 0.0, 3.0});
+  input.triangles = {{0, 1, 4}, {1, 2, 4}, {2, 0, 4}, {0, 2, 3}};
+  const AabbTree tree(input);
+  PrmMesh prm;
+  frame_of(prm);
+  prm.mesh = input;
+  const size_t removed = prune_inserted_vertices(prm, 4, input, tree, 1.0);
+  EXPECT_EQ(removed, 0u);
+  EXPECT_EQ(prm.mesh.positions.size(), 5u);
+  EXPECT_EQ(prm.mesh.triangles.size(), 4u);
+  // The same fan with the bound past the spike's height: it goes.
+  EXPECT_EQ(prune_inserted_vertices(prm, 4, input, tree, 3.5), 1u);
+}
+
 }  // namespace prm::remesh
