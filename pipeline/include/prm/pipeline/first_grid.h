@@ -14,8 +14,11 @@ struct SurfaceGridStatistics {
   double kappa_rms = 0;   // sqrt(sum theta^2 l / d / area) x diagonal: the RMS curvature (remesh::measure_relief_detail)
   double kappa_abs = 0;   // sum theta l / area x diagonal: the mean absolute curvature
   double edge_mean = 0;   // the mean edge length / unit
-  // The grid g / unit at which sqrt(sum theta^2 l g^3 min(g / d, 1) / area) = unit: the interpolation error of a
-  // smooth patch (g^4 kappa^2 where d < g) and of a crease (g^3 theta^2 per length where d > g), up to a constant.
+  // The grid g / unit at which sqrt(sum theta^2 l g^3 min(g / d, 1) / area) = unit. An empirical model, fitted
+  // as it is (kFirstGridFit): an edge coarser than the grid (d > g) counts as a smooth bend, g^4 kappa^2 over its
+  // area ~ l d with kappa = theta / d; one finer than the grid (d < g) as g^3 theta^2 l, less than that by d / g
+  // (detail finer than the grid weighs less). The other way round (max instead of min: fine edges smooth, coarse
+  // ones creases) was meant first and was not measured.
   double model_grid = 0;
   size_t edges = 0;       // the interior edges counted
 };
