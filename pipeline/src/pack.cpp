@@ -17,6 +17,7 @@
 #include "prm/progress.h"
 #include "prm/pipeline/boundary_simplification.h"
 #include "prm/pipeline/codec_bridge.h"
+#include "prm/pipeline/first_grid.h"
 #include "prm/pipeline/pack_general.h"
 #include "prm/remesh/lattice.h"
 #include "prm/remesh/relief_grids.h"
@@ -436,6 +437,7 @@ EffortPlan effort_plan(int effort) {
     case 0:
       p.steps = 1; p.search_samples_per_face = 2; p.lambda_rounds = 1; p.grid_tolerance = 0.15; p.accept_error = 0;
       p.decode_in_band = true; p.error_samples = 1; p.error_unit_stride = 16; p.lambda_below = 0.97;
+      p.first_grid_gate = 0.9;
       p.lambda_full_density = true;
       break;
     case 1: p.steps = 1; p.search_samples_per_face = 2; p.lambda_rounds = 3; p.grid_tolerance = 0.1; p.accept_error = 0.85; break;
@@ -660,6 +662,11 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
       };
       int p = best_p;
       grid = kGridPerTargetError * predicted_error * reference.diagonal();
+      if (plan.first_grid_gate > 0) {
+        const double unit = predicted_error * reference.diagonal();
+        const double predicted = predict_first_grid(surface_grid_statistics(source, unit, reference.diagonal()), unit);
+        if (predicted > 0 && predicted < plan.first_grid_gate * grid) grid = predicted;
+      }
       // EffortPlan::coarser_step_from_grid: the first step's search stops after its first grid when that grid meets
       // the target and the next one would be of that many quantization steps or more; the next coarser step is
       // tried instead, from that next grid, and the first step's search is resumed only when the coarser step

@@ -169,6 +169,13 @@ struct EffortPlan {
   // The lambda rounds measure at full density instead of the search's samples, so that the check reuses the kept
   // lambda stream's measurement (its own Metro run otherwise).
   bool lambda_full_density = false;
+  // The first grid is predict_first_grid's (first_grid.h, from the input's edges) when that is finer than this
+  // fraction of kGridPerTargetError's (0: never): on the feline at 2.6e-4 (predicted 0.77 of the constant's) the
+  // first remesh then meets the target and the second is saved; on horse, venus and bunny_zipper (0.94-0.99) the
+  // constant's grid stays. The gate, not the prediction alone: the prediction lands at 0.87-0.90 of the grid needed
+  // on horse, venus and bunny_zipper, where the constant's is 0.88-0.94 and a finer grid costs bytes and time
+  // (bench/README.md "pack effort", twelfth round).
+  double first_grid_gate = 0;
 };
 EffortPlan effort_plan(int effort);  // throws std::invalid_argument outside kMinEffort..kMaxEffort
 constexpr double kHeightTolerance = 1.5;
