@@ -145,6 +145,43 @@ void check_buffer_views(const Document& doc) {
   }
 }
 
+// The members the commands read as typed values (glTF 2.0 §5 and its JSON schema): a value of another type is refused
+// here, by name, instead of throwing nlohmann's type_error deep inside `prm info` or `prm unpack` (the CLI's
+// "internal error"). Elements of the top-level arrays are objects, their names strings; extensionsUsed and
+// extensionsRequired list strings; a primitive's attributes and extensions are objects and its mode an integer.
+void check_member_types(const Document& doc) {
+  const json& j = doc.json;
+  for (const char* key : {"extensionsUsed", "extensionsRequired"}) {
+    if (!j.contains(key)) continue;
+    if (!j[key].is_array()) fail(doc.path, std::string(key) + " is not an array");
+    for (size_t i = 0; i < j[key].size(); ++i)
+      if (!j[key][i].is_string()) fail(doc.path, std::string(key) + "[" + std::to_string(i) + "] is not a string");
+  }
+  for (const char* key : {"buffers", "bufferViews", "accessors", "meshes", "nodes", "images"}) {
+    const json& list = array_or_empty(j, key);
+    for (size_t i = 0; i < list.size(); ++i) {
+      const std::string where = key + ("[" + std::to_string(i) + "]");
+      if (!list[i].is_object()) fail(doc.path, where + " is not an object");
+      if (list[i].contains("name") && !list[i]["name"].is_string()) fail(doc.path, where + ".name is not a string");
+    }
+  }
+  const json& meshes = array_or_empty(j, "meshes");
+  for (size_t m = 0; m < meshes.size(); ++m) {
+    if (!meshes[m].contains("primitives")) continue;
+    const json& prims = meshes[m]["primitives"];
+    if (!prims.is_array()) fail(doc.path, "meshes[" + std::to_string(m) + "].primitives is not an array");
+    for (size_t p = 0; p < prims.size(); ++p) {
+      const std::string where = primitive_name(m, p);
+      if (!prims[p].is_object()) fail(doc.path, where + " is not an object");
+      for (const char* key : {"attributes", "extensions"})
+        if (prims[p].contains(key) && !prims[p][key].is_object())
+          fail(doc.path, where + "." + key + " is not an object");
+      if (prims[p].contains("mode") && !prims[p]["mode"].is_number_integer())
+        fail(doc.path, where + ".mode is not an integer");
+    }
+  }
+}
+
 }  // namespace
 
 bool is_gltf_path(const std::string& path) {
@@ -228,6 +265,7 @@ Document read_document(const std::string& path) {
     doc.buffers.push_back(std::move(data));
   }
   check_buffer_views(doc);
+  check_member_types(doc);
   return doc;
 }
 

@@ -169,6 +169,33 @@ TEST(GltfDocument, HostileContainersAreRefusedByName) {
   expect_input_error(p, "not base64");
 }
 
+// Members of the wrong JSON type were left to nlohmann's type_error inside `prm info` / `prm unpack` (exit 70,
+// "internal error"; found by gltf_ext/fuzz/gltf_ext_fuzzer.cpp): read_document names them.
+TEST(GltfDocument, MembersOfTheWrongTypeAreRefusedByName) {
+  const std::string p = temp_path("wrong_type.glb");
+  const auto with = [&](const std::string& members) {
+    write_bytes(p, glb(R"({"asset":{"version":"2.0"},)" + members + "}", {}));
+  };
+  with(R"("meshes":[{"primitives":[{"attributes":{},"mode":"x"}]}])");
+  expect_input_error(p, "meshes[0].primitives[0].mode is not an integer");
+  with(R"("meshes":[{"name":5,"primitives":[]}])");
+  expect_input_error(p, "meshes[0].name is not a string");
+  with(R"("extensionsUsed":[1])");
+  expect_input_error(p, "extensionsUsed[0] is not a string");
+  with(R"("extensionsRequired":{})");
+  expect_input_error(p, "extensionsRequired is not an array");
+  with(R"("meshes":[7])");
+  expect_input_error(p, "meshes[0] is not an object");
+  with(R"("meshes":[{"primitives":{}}])");
+  expect_input_error(p, "meshes[0].primitives is not an array");
+  with(R"("meshes":[{"primitives":[{"attributes":[]}]}])");
+  expect_input_error(p, "meshes[0].primitives[0].attributes is not an object");
+  with(R"("meshes":[{"primitives":[{"attributes":{},"extensions":3}]}])");
+  expect_input_error(p, "meshes[0].primitives[0].extensions is not an object");
+  with(R"("meshes":[{"name":"ok","primitives":[{"attributes":{},"mode":4}]}],"extensionsUsed":["X"])");
+  EXPECT_NO_THROW(read_document(p));
+}
+
 TEST(GltfPackScene, KeepsWhatPrmCannotCarryAndSaysWhy) {
   // Five primitives over the cube: TEXCOORD_0, COLOR_0, morph target, strip mode, skinned mesh; one plain one.
   Document doc = document_from_mesh(cube(), "cube");
