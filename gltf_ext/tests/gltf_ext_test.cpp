@@ -196,6 +196,32 @@ TEST(GltfDocument, MembersOfTheWrongTypeAreRefusedByName) {
   EXPECT_NO_THROW(read_document(p));
 }
 
+// EXT_meshopt_compression claims (found by gltf_ext/fuzz/gltf_ext_fuzzer.cpp): a 16-byte view that claims
+// 2^28 x 256 decoded bytes was allocated before decoding (`prm unpack`: out of memory, exit 3), and a mode or
+// filter that is not a string threw nlohmann's type_error (exit 70). Both are refused by name.
+TEST(GltfMeshopt, ClaimsBeyondTheDataAndMistypedFieldsAreRefusedByName) {
+  const auto expect_refused = [](const std::string& ext, const std::string& fragment) {
+    Document doc;
+    doc.path = "meshopt.glb";
+    doc.json = json::parse(R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":16}],
+        "bufferViews":[{"buffer":0,"byteLength":16,"extensions":{"EXT_meshopt_compression":)" + ext + "}}]}");
+    doc.buffers = {std::vector<uint8_t>(16, 0)};
+    try {
+      decode_meshopt_views(doc);
+      ADD_FAILURE() << "no error for " << ext;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+    }
+  };
+  expect_refused(R"({"buffer":0,"byteLength":16,"byteStride":256,"count":268435456,"mode":"ATTRIBUTES"})",
+                 "count x byteStride = 68719476736 bytes from 16 compressed bytes, more than meshopt's codecs expand to");
+  expect_refused(R"({"buffer":0,"byteLength":16,"byteStride":4,"count":3,"mode":5})", ".mode is not a string");
+  expect_refused(R"({"buffer":0,"byteLength":16,"byteStride":4,"count":3,"mode":"TRIANGLES","filter":[]})",
+                 ".filter is not a string");
+  expect_refused(R"({"buffer":0,"byteOffset":"0","byteLength":16,"byteStride":4,"count":3,"mode":"TRIANGLES"})",
+                 ".byteOffset is not a non-negative integer");
+}
+
 TEST(GltfPackScene, KeepsWhatPrmCannotCarryAndSaysWhy) {
   // Five primitives over the cube: TEXCOORD_0, COLOR_0, morph target, strip mode, skinned mesh; one plain one.
   Document doc = document_from_mesh(cube(), "cube");
