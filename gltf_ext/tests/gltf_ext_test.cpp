@@ -192,6 +192,18 @@ TEST(GltfDocument, MembersOfTheWrongTypeAreRefusedByName) {
   expect_input_error(p, "meshes[0].primitives[0].attributes is not an object");
   with(R"("meshes":[{"primitives":[{"attributes":{},"extensions":3}]}])");
   expect_input_error(p, "meshes[0].primitives[0].extensions is not an object");
+  // Read by read_accessor (`prm pack` of a .glb, Draco primitives in `prm unpack`).
+  with(R"("accessors":[{"componentType":"x","count":1,"type":"VEC3"}])");
+  expect_input_error(p, "accessors[0].componentType is not an integer");
+  with(R"("accessors":[{"componentType":5126,"count":1,"type":"VEC3","normalized":1}])");
+  expect_input_error(p, "accessors[0].normalized is not a boolean");
+  with(R"("accessors":[{"componentType":5126,"count":1,"type":3}])");
+  expect_input_error(p, "accessors[0].type is not a string");
+  with(R"("accessors":[{"componentType":5126,"count":1,"type":"VEC3","sparse":{"count":1,"indices":{"bufferView":"0"}}}])");
+  expect_input_error(p, "accessors[0].sparse.indices.bufferView is not an integer");
+  with(R"("buffers":[{"byteLength":4,"uri":"data:application/octet-stream;base64,AAAAAA=="}],
+          "bufferViews":[{"buffer":0,"byteLength":4,"byteStride":"x"}])");
+  expect_input_error(p, "bufferViews[0].byteStride is not an integer");
   with(R"("meshes":[{"name":"ok","primitives":[{"attributes":{},"mode":4}]}],"extensionsUsed":["X"])");
   EXPECT_NO_THROW(read_document(p));
 }
