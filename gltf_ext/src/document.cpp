@@ -148,7 +148,7 @@ void check_buffer_views(const Document& doc) {
 // The members the commands read as typed values (glTF 2.0 §5 and its JSON schema): a value of another type is refused
 // here, by name, instead of throwing nlohmann's type_error deep inside `prm info` or `prm unpack` (the CLI's
 // "internal error"). Elements of the top-level arrays are objects, their names strings; extensionsUsed and
-// extensionsRequired list strings; a primitive's attributes and extensions are objects and its mode an integer; an
+// extensionsRequired list strings; a primitive's attributes and extensions are objects, its mode, indices, material and attribute values integers; an
 // accessor's (and its sparse parts') indices, offsets, component type and count are integers, its type a string and
 // normalized a boolean; a bufferView's byteStride and target are integers.
 void check_member_types(const Document& doc) {
@@ -202,8 +202,10 @@ void check_member_types(const Document& doc) {
       for (const char* key : {"attributes", "extensions"})
         if (prims[p].contains(key) && !prims[p][key].is_object())
           fail(doc.path, where + "." + key + " is not an object");
-      if (prims[p].contains("mode") && !prims[p]["mode"].is_number_integer())
-        fail(doc.path, where + ".mode is not an integer");
+      integers(prims[p], {"mode", "indices", "material"}, where);
+      if (prims[p].contains("attributes"))
+        for (const auto& [name, index] : prims[p]["attributes"].items())
+          if (!index.is_number_integer()) fail(doc.path, where + ".attributes." + name + " is not an integer");
     }
   }
 }

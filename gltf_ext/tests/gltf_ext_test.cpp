@@ -192,6 +192,11 @@ TEST(GltfDocument, MembersOfTheWrongTypeAreRefusedByName) {
   expect_input_error(p, "meshes[0].primitives[0].attributes is not an object");
   with(R"("meshes":[{"primitives":[{"attributes":{},"extensions":3}]}])");
   expect_input_error(p, "meshes[0].primitives[0].extensions is not an object");
+  // Read as integers by the Draco input (`prm unpack`).
+  with(R"("meshes":[{"primitives":[{"attributes":{"POSITION":"0"}}]}])");
+  expect_input_error(p, "meshes[0].primitives[0].attributes.POSITION is not an integer");
+  with(R"("meshes":[{"primitives":[{"attributes":{},"indices":[1]}]}])");
+  expect_input_error(p, "meshes[0].primitives[0].indices is not an integer");
   // Read by read_accessor (`prm pack` of a .glb, Draco primitives in `prm unpack`).
   with(R"("accessors":[{"componentType":"x","count":1,"type":"VEC3"}])");
   expect_input_error(p, "accessors[0].componentType is not an integer");
