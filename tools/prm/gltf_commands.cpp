@@ -25,11 +25,6 @@ namespace {
 
 using nlohmann::json;
 
-size_t file_size(const std::string& path) {
-  struct stat st;
-  return ::stat(path.c_str(), &st) == 0 ? static_cast<size_t>(st.st_size) : 0;
-}
-
 std::string lower_extension(const std::string& path) {
   const size_t dot = path.find_last_of('.');
   if (dot == std::string::npos || path.find('/', dot) != std::string::npos) return {};

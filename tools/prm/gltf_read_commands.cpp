@@ -18,7 +18,6 @@
 #include "prm_stream_info.h"
 
 namespace prm::cli {
-namespace {
 
 using nlohmann::json;
 
@@ -26,8 +25,6 @@ size_t file_size(const std::string& path) {
   struct stat st;
   return ::stat(path.c_str(), &st) == 0 ? static_cast<size_t>(st.st_size) : 0;
 }
-
-}  // namespace
 
 void run_gltf_unpack(const std::string& input, const std::string& output, bool as_json) {
   if (!gltf::is_gltf_path(output))
