@@ -169,8 +169,9 @@ TEST(GltfDocument, HostileContainersAreRefusedByName) {
   expect_input_error(p, "not base64");
 }
 
-// Members of the wrong JSON type were left to nlohmann's type_error inside `prm info` / `prm unpack` (exit 70,
-// "internal error"; found by gltf_ext/fuzz/gltf_ext_fuzzer.cpp): read_document names them.
+// Members of the wrong JSON type were left to nlohmann's type_error inside `prm info`, `prm unpack` and `prm pack`
+// (exit 70, "internal error"; found by hand, with crafted assets, while writing gltf_ext/fuzz/gltf_ext_fuzzer.cpp):
+// read_document names them.
 TEST(GltfDocument, MembersOfTheWrongTypeAreRefusedByName) {
   const std::string p = temp_path("wrong_type.glb");
   const auto with = [&](const std::string& members) {
@@ -213,8 +214,8 @@ TEST(GltfDocument, MembersOfTheWrongTypeAreRefusedByName) {
   EXPECT_NO_THROW(read_document(p));
 }
 
-// EXT_meshopt_compression claims (found by gltf_ext/fuzz/gltf_ext_fuzzer.cpp): a 16-byte view that claims
-// 2^28 x 256 decoded bytes was allocated before decoding (`prm unpack`: out of memory, exit 3), and a mode or
+// EXT_meshopt_compression claims (found by hand while writing gltf_ext/fuzz/gltf_ext_fuzzer.cpp): a 16-byte view
+// that claims 2^28 x 256 decoded bytes was allocated before decoding (`prm unpack`: out of memory, exit 3), and a mode or
 // filter that is not a string threw nlohmann's type_error (exit 70). Both are refused by name.
 TEST(GltfMeshopt, ClaimsBeyondTheDataAndMistypedFieldsAreRefusedByName) {
   const auto expect_refused = [](const std::string& ext, const std::string& fragment) {
