@@ -252,5 +252,34 @@ TEST(MeshIoHostileMisc, WeldingWithinAToleranceOnHugeCoordinatesWeldsEqualOnesOn
   std::remove(path.c_str());
 }
 
+// A second 'face' (or 'vertex') element, or 'face' with 'tristrips', gave the polygons properties of another length:
+// finish_mesh read past them (ASan heap-buffer-overflow; found by common/fuzz/mesh_read_fuzzer.cpp). Refused by name.
+TEST(MeshIoHostileMisc, PlyWithARepeatedVertexOrFaceElementIsRefused) {
+  const std::string path = test::temp_path("repeated_element.ply");
+  const auto expect = [&](const std::string& elements, const std::string& body, const std::string& fragment) {
+    {
+      std::ofstream f(path, std::ios::binary);
+      f << "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+        << elements << "end_header\n0 0 0\n1 0 0\n0 1 0\n" << body;
+    }
+    try {
+      read_mesh(path);
+      ADD_FAILURE() << "no error for " << elements;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+    }
+  };
+  expect("element face 0\nproperty list uchar int vertex_indices\nproperty int t\n"
+         "element face 1\nproperty list uchar int vertex_indices\n",
+         "3 0 1 2\n", "element 'face' appears twice in the header");
+  expect("element face 1\nproperty list uchar int vertex_indices\nproperty int t\n"
+         "element tristrips 1\nproperty list int int vertex_indices\n",
+         "3 0 1 2 7\n3 0 1 2\n", "elements 'face' and 'tristrips' together");
+  expect("element vertex 0\nproperty float x\nproperty float y\nproperty float z\nproperty float c\n"
+         "element face 1\nproperty list uchar int vertex_indices\n",
+         "3 0 1 2\n", "element 'vertex' appears twice in the header");
+  std::remove(path.c_str());
+}
+
 }  // namespace
 }  // namespace prm
