@@ -1,9 +1,10 @@
 #!/bin/sh
-# Fuzzing as a habit: builds the four codec fuzz targets with clang and libFuzzer, seeds a kept corpus per target,
+# Fuzzing as a habit: builds the four codec fuzz targets and the two readers' targets (mesh_read_fuzzer:
+# common/fuzz, the mesh files; gltf_ext_fuzzer: gltf_ext/fuzz, a .glb with PRM streams) with clang and libFuzzer, seeds a kept corpus per target,
 # fuzzes each target in turn (one process, niced) with a fast UBSan build, then runs every unit of its corpus once
 # under ASan+UBSan. Totals per target are appended to a log.
 #
-#   codec/fuzz/run.sh [SECONDS_PER_TARGET] [TARGET...]      (default: 300 s each, all four targets)
+#   codec/fuzz/run.sh [SECONDS_PER_TARGET] [TARGET...]      (default: 300 s each, all six targets)
 #   codec/fuzz/run.sh 0 [TARGET...]                         (no fuzzing: the ASan pass over the kept corpora only)
 #
 # Two builds (codec/fuzz/README.md says why): $FUZZ_DIR/ubsan, UBSan only, for throughput, and $FUZZ_DIR/asan,
@@ -27,7 +28,7 @@ set -eu
 
 seconds=${1:-300}
 [ $# -gt 0 ] && shift
-targets=${*:-"decode_fuzzer range_coder_fuzzer roundtrip_fuzzer prm_roundtrip_fuzzer"}
+targets=${*:-"decode_fuzzer range_coder_fuzzer roundtrip_fuzzer prm_roundtrip_fuzzer mesh_read_fuzzer gltf_ext_fuzzer"}
 root=$(cd "$(dirname "$0")/../.." && pwd)
 fuzz_dir=${FUZZ_DIR:-$root/build-fuzz}
 prm=${PRM:-$root/build/tools/prm/prm}
@@ -85,6 +86,52 @@ seed_decode() {
   fi
 }
 
+# Seeds of the mesh read fuzzer, each behind its control byte (common/fuzz/mesh_read_fuzzer.cpp: 0 PLY, 1 OBJ, 2 OFF,
+# 3 STL, 4 glTF, 5 GLB, 6 sniffed): the small hand-made files of common/tests/data (valid and hostile), and a real
+# mesh made small now (rabbit_1k_decimated packed at 1e-2, decoded to PLY, OBJ, OFF, glTF and GLB), also sniffed.
+seed_mesh_read() {
+  dir=$1
+  for s in "$root"/common/tests/data/*; do
+    b=""
+    case $s in
+      *.ply) b='\000' ;; *.obj) b='\001' ;; *.off) b='\002' ;; *.stl) b='\003' ;; *.gltf) b='\004' ;; *.glb) b='\005' ;;
+    esac
+    [ -n "$b" ] || continue
+    (printf "$b"; cat "$s") >"$dir/seed-$(basename "$s")"
+  done
+  m=$root/../shared/meshes/rabbit_1k_decimated.off
+  if [ -x "$prm" ] && [ -f "$m" ] && [ ! -f "$dir/seed-rabbit.ply" ] &&
+     nice -n "$niceness" "$prm" pack "$m" -o "$tmp/r.prm" --target-error 1e-2 >/dev/null 2>&1; then
+    for e in ply:000 obj:001 off:002 gltf:004 glb:005; do
+      "$prm" decode "$tmp/r.prm" -o "$tmp/r.${e%%:*}" >/dev/null 2>&1 || continue
+      (printf "\\${e#*:}"; cat "$tmp/r.${e%%:*}") >"$dir/seed-rabbit.${e%%:*}"
+      (printf '\006'; cat "$tmp/r.${e%%:*}") >"$dir/seed-rabbit-sniffed.${e%%:*}"
+    done
+  fi
+}
+
+# Seeds of the glTF extension fuzzer (gltf_ext/fuzz/gltf_ext_fuzzer.cpp; control byte 0: a .glb, read and unpacked to
+# a .glb): assets with PRM streams made now by `prm pack` of rabbit_1k_decimated (with and without --fallback, GLB and
+# .gltf) and of the hand-made tet.glb, and the GLBs of common/tests/data.
+seed_gltf_ext() {
+  dir=$1
+  for s in "$root"/common/tests/data/*.glb; do (printf '\000'; cat "$s") >"$dir/seed-$(basename "$s")"; done
+  [ -x "$prm" ] || return 0
+  for m in "$root"/../shared/meshes/rabbit_1k_decimated.off "$root"/common/tests/data/tet.glb; do
+    [ -f "$m" ] || continue
+    n=$(basename "$m")
+    for v in glb: glb:--fallback gltf: gltf:--fallback; do
+      out=$dir/seed-pack-$n${v#*:}.${v%%:*}
+      [ -f "$out" ] && continue
+      # shellcheck disable=SC2086
+      nice -n "$niceness" "$prm" pack "$m" -o "$tmp/p.${v%%:*}" --target-error 1e-2 ${v#*:} >/dev/null 2>&1 || continue
+      c='\000'
+      [ "${v%%:*}" = gltf ] && c='\001'
+      (printf "$c"; cat "$tmp/p.${v%%:*}") >"$out"
+    done
+  done
+}
+
 # One line of the log from libFuzzer's final statistics in $1 (build $2, target $3, exit status $4, seconds asked $5).
 log_line() {
   n=$(sed -n 's/^stat::number_of_executed_units: *//p' "$1" | tail -n 1)
@@ -94,6 +141,15 @@ log_line() {
   [ "$4" -ne 0 ] && finding="exit $4: $(grep -m 1 -E 'ERROR|SUMMARY|Test unit written' "$1" || true)"
   printf '%s\t%s\t%s\t%s\t%s\t%s\t%s\t%s\n' "$(date -u +%Y-%m-%dT%H:%MZ)" "$commit" "$2" "$3" "${n:-?}" \
       "${secs:-$5}" "${rate:-?}" "$finding" | tee -a "$fuzz_dir/fuzz-log.tsv"
+}
+
+# Where a target's binary is in a build tree.
+target_dir() {
+  case $1 in
+    mesh_read_fuzzer) echo common ;;
+    gltf_ext_fuzzer) echo tools/prm ;;
+    *) echo codec ;;
+  esac
 }
 
 commit=$(git -C "$root" rev-parse --short HEAD 2>/dev/null || echo unknown)
@@ -106,6 +162,14 @@ for t in $targets; do
     extra="-max_len=12288"  # the largest seed (feline_5k encoded at 10 bits) is 10.7 KB
   fi
   [ "$t" = prm_roundtrip_fuzzer ] && extra="-max_len=64 -len_control=0"
+  if [ "$t" = mesh_read_fuzzer ]; then
+    seed_mesh_read "$corpus"
+    extra="-max_len=16384"  # the largest seed (the rabbit as OBJ/OFF) is 8.8 KB
+  fi
+  if [ "$t" = gltf_ext_fuzzer ]; then
+    seed_gltf_ext "$corpus"
+    extra="-max_len=16384"
+  fi
   limit=""  # whichever comes first
   [ "$seconds" != 0 ] && limit="-max_total_time=$seconds"
   [ -n "$runs" ] && limit="$limit -runs=$runs"
@@ -114,7 +178,7 @@ for t in $targets; do
     echo "== $t: $limit, corpus $corpus" >&2
     status=0
     # shellcheck disable=SC2086
-    nice -n "$niceness" "$fuzz_dir/ubsan/codec/prm_fuzz_$t" $limit -rss_limit_mb="$rss_mb" -timeout=20 \
+    nice -n "$niceness" "$fuzz_dir/ubsan/$(target_dir "$t")/prm_fuzz_$t" $limit -rss_limit_mb="$rss_mb" -timeout=20 \
         -print_final_stats=1 -artifact_prefix="$fuzz_dir/artifacts/$t-" $extra "$corpus" >"$log" 2>&1 || status=$?
     log_line "$log" ubsan "$t" "$status" "$seconds"
   fi
@@ -123,7 +187,7 @@ for t in $targets; do
   echo "== $t: ASan pass over corpus $corpus" >&2
   status=0
   # shellcheck disable=SC2086
-  nice -n "$niceness" "$fuzz_dir/asan/codec/prm_fuzz_$t" -runs=0 -rss_limit_mb="$rss_mb" -timeout=60 \
+  nice -n "$niceness" "$fuzz_dir/asan/$(target_dir "$t")/prm_fuzz_$t" -runs=0 -rss_limit_mb="$rss_mb" -timeout=60 \
       -print_final_stats=1 -artifact_prefix="$fuzz_dir/artifacts/$t-asan-" $extra "$corpus" >"$log.asan" 2>&1 ||
       status=$?
   log_line "$log.asan" asan-corpus "$t" "$status" 0

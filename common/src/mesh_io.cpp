@@ -165,8 +165,11 @@ std::vector<uint32_t> weld_map(const std::vector<Vec3>& pos, double tol) {
     return rep;
   }
   // Tolerance: a hash grid of cell size tol; each vertex joins the first earlier vertex within tol, looking
-  // in its own cell and the 26 around it. Cell coordinates are clamped so that a tiny tolerance on large
-  // coordinates cannot overflow (the distance test decides anyway).
+  // in its own cell and the 26 around it. Where |x| / tol exceeds 4e18 (a tiny tolerance on large coordinates),
+  // tol is below the spacing of doubles there (|x| 2^-53 > 400 tol), so two coordinates within tol are equal: the
+  // cell is then the value itself, folded into the int64 range above the grid's. (Clamping them to one cell, as
+  // before, put every such vertex in the same cell: with --weld-tolerance 1e-3, a 1 MB binary STL of distinct
+  // coordinates near 1e17 took 3.5 s, quadratic in the vertex count.)
   struct Cell {
     int64_t x, y, z;
     bool operator==(const Cell& o) const { return x == o.x && y == o.y && z == o.z; }
@@ -179,10 +182,16 @@ std::vector<uint32_t> weld_map(const std::vector<Vec3>& pos, double tol) {
     }
   };
   std::unordered_map<Cell, std::vector<uint32_t>, CellHash> grid;
-  auto coord = [&](double x) {
+  auto coord = [&](double x) -> int64_t {
     const double q = std::floor(x / tol);
     constexpr double kLimit = 4e18;
-    return static_cast<int64_t>(std::max(-kLimit, std::min(kLimit, q)));
+    if (std::fabs(q) <= kLimit) return static_cast<int64_t>(q);
+    constexpr uint64_t kFold = 4'000'000'000'000'000'000u;
+    constexpr int64_t kBase = 4'100'000'000'000'000'000;  // beyond the grid's cells and their neighbours
+    uint64_t bits;
+    std::memcpy(&bits, &x, sizeof bits);
+    const int64_t folded = kBase + static_cast<int64_t>(bits % kFold);  // at most 5 values share one
+    return q > 0 ? folded : -folded;
   };
   for (uint32_t v = 0; v < pos.size(); ++v) {
     const Cell c{coord(pos[v][0]), coord(pos[v][1]), coord(pos[v][2])};

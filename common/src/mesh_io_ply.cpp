@@ -276,6 +276,15 @@ RawMesh read_ply(const std::string& path, bool keep_properties) {
       if (c > kMaxElements)
         fail(path, "element '" + e.name + "' claims " + count + " entries (at most 2^31)");
       e.count = c;
+      // One element of each kind the reader uses: a second 'vertex' or 'face' (or 'face' with 'tristrips') would give
+      // the polygons or vertices properties of another length (found by common/fuzz/mesh_read_fuzzer.cpp).
+      for (const PlyElement& o : elements) {
+        const bool face_like = e.name == "face" || e.name == "tristrips";
+        if ((e.name == "vertex" || face_like) && o.name == e.name)
+          fail(path, "element '" + e.name + "' appears twice in the header");
+        if (face_like && (o.name == "face" || o.name == "tristrips"))
+          fail(path, "elements 'face' and 'tristrips' together: the faces are one or the other");
+      }
       elements.push_back(e);
     } else if (key == "property") {
       if (elements.empty()) fail(path, "a property comes before any element");

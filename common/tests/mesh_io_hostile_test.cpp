@@ -3,6 +3,7 @@
 // file and the problem, without allocating for counts the file cannot hold.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <string>
@@ -219,6 +220,64 @@ TEST(MeshIoHostileMisc, HugePolygonIsFanTriangulatedQuickly) {
   EXPECT_EQ(rep.polygons_triangulated, 1u);
   ASSERT_FALSE(rep.notes.empty());
   EXPECT_NE(rep.notes.back().find("fans"), std::string::npos);
+  std::remove(path.c_str());
+}
+
+// Welding within a tolerance on coordinates beyond 4e18 tolerances: they once shared one clamped grid cell (a
+// binary STL of distinct coordinates near 1e17 with --weld-tolerance 1e-3: 3.5 s for 1 MB, quadratic). There the
+// tolerance is below the spacing of doubles, so only equal coordinates weld; the cell is the value itself.
+TEST(MeshIoHostileMisc, WeldingWithinAToleranceOnHugeCoordinatesWeldsEqualOnesOnly) {
+  const double big = 1e17, next = std::nextafter(big, 2e17), tiny = 1e-4;
+  char buf[512];
+  std::snprintf(buf, sizeof buf,
+                "OFF\n8 3 0\n%.17g %.17g %.17g\n%.17g %.17g %.17g\n%.17g %.17g %.17g\n%.17g %.17g %.17g\n"
+                "%.17g %.17g %.17g\n0 0 0\n%.17g 0 0\n0 1 0\n3 0 2 3\n3 1 4 3\n",
+                big, big, big,      // 0
+                big, big, -big,     // 1
+                next, big, big,     // 2: one ulp (16) from vertex 0 in x: not within 1e-3
+                big, big, big,      // 3: vertex 0 again: welds
+                big, big, -big,     // 4: vertex 1 again: welds
+                tiny);              // 6: 1e-4 from vertex 5: welds
+  const std::string path = test::temp_path("huge_coordinates_weld.off");
+  {
+    std::ofstream f(path, std::ios::binary);
+    f << buf << "3 5 6 7\n";
+  }
+  ReadOptions o;
+  o.weld = ReadOptions::Weld::Always;
+  o.weld_tolerance = 1e-3;
+  ReadReport rep;
+  const Mesh m = read_mesh(path, o, &rep);
+  EXPECT_EQ(rep.vertices_welded, 3u);  // 3 into 0, 4 into 1, 6 into 5
+  std::remove(path.c_str());
+}
+
+// A second 'face' (or 'vertex') element, or 'face' with 'tristrips', gave the polygons properties of another length:
+// finish_mesh read past them (ASan heap-buffer-overflow; found by common/fuzz/mesh_read_fuzzer.cpp). Refused by name.
+TEST(MeshIoHostileMisc, PlyWithARepeatedVertexOrFaceElementIsRefused) {
+  const std::string path = test::temp_path("repeated_element.ply");
+  const auto expect = [&](const std::string& elements, const std::string& body, const std::string& fragment) {
+    {
+      std::ofstream f(path, std::ios::binary);
+      f << "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
+        << elements << "end_header\n0 0 0\n1 0 0\n0 1 0\n" << body;
+    }
+    try {
+      read_mesh(path);
+      ADD_FAILURE() << "no error for " << elements;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+    }
+  };
+  expect("element face 0\nproperty list uchar int vertex_indices\nproperty int t\n"
+         "element face 1\nproperty list uchar int vertex_indices\n",
+         "3 0 1 2\n", "element 'face' appears twice in the header");
+  expect("element face 1\nproperty list uchar int vertex_indices\nproperty int t\n"
+         "element tristrips 1\nproperty list int int vertex_indices\n",
+         "3 0 1 2 7\n3 0 1 2\n", "elements 'face' and 'tristrips' together");
+  expect("element vertex 0\nproperty float x\nproperty float y\nproperty float z\nproperty float c\n"
+         "element face 1\nproperty list uchar int vertex_indices\n",
+         "3 0 1 2\n", "element 'vertex' appears twice in the header");
   std::remove(path.c_str());
 }
 

@@ -145,6 +145,71 @@ void check_buffer_views(const Document& doc) {
   }
 }
 
+// The members the commands read as typed values (glTF 2.0 §5 and its JSON schema): a value of another type is refused
+// here, by name, instead of throwing nlohmann's type_error deep inside `prm info` or `prm unpack` (the CLI's
+// "internal error"). Elements of the top-level arrays are objects, their names strings; extensionsUsed and
+// extensionsRequired list strings; a primitive's attributes and extensions are objects, its mode, indices, material and attribute values integers; an
+// accessor's (and its sparse parts') indices, offsets, component type and count are integers, its type a string and
+// normalized a boolean; a bufferView's byteStride and target are integers.
+void check_member_types(const Document& doc) {
+  const json& j = doc.json;
+  for (const char* key : {"extensionsUsed", "extensionsRequired"}) {
+    if (!j.contains(key)) continue;
+    if (!j[key].is_array()) fail(doc.path, std::string(key) + " is not an array");
+    for (size_t i = 0; i < j[key].size(); ++i)
+      if (!j[key][i].is_string()) fail(doc.path, std::string(key) + "[" + std::to_string(i) + "] is not a string");
+  }
+  for (const char* key : {"buffers", "bufferViews", "accessors", "meshes", "nodes", "images"}) {
+    const json& list = array_or_empty(j, key);
+    for (size_t i = 0; i < list.size(); ++i) {
+      const std::string where = key + ("[" + std::to_string(i) + "]");
+      if (!list[i].is_object()) fail(doc.path, where + " is not an object");
+      if (list[i].contains("name") && !list[i]["name"].is_string()) fail(doc.path, where + ".name is not a string");
+    }
+  }
+  const auto integers = [&](const json& obj, std::initializer_list<const char*> keys, const std::string& where) {
+    for (const char* key : keys)
+      if (obj.contains(key) && !obj[key].is_number_integer()) fail(doc.path, where + "." + key + " is not an integer");
+  };
+  const json& views = array_or_empty(j, "bufferViews");
+  for (size_t i = 0; i < views.size(); ++i) integers(views[i], {"byteStride", "target"}, "bufferViews[" + std::to_string(i) + "]");
+  const json& accessors = array_or_empty(j, "accessors");
+  for (size_t i = 0; i < accessors.size(); ++i) {
+    const json& a = accessors[i];
+    const std::string where = "accessors[" + std::to_string(i) + "]";
+    integers(a, {"bufferView", "byteOffset", "componentType", "count"}, where);
+    if (a.contains("type") && !a["type"].is_string()) fail(doc.path, where + ".type is not a string");
+    if (a.contains("normalized") && !a["normalized"].is_boolean()) fail(doc.path, where + ".normalized is not a boolean");
+    if (!a.contains("sparse")) continue;
+    const json& sp = a["sparse"];
+    if (!sp.is_object()) fail(doc.path, where + ".sparse is not an object");
+    integers(sp, {"count"}, where + ".sparse");
+    for (const char* part : {"indices", "values"}) {
+      if (!sp.contains(part)) continue;
+      const std::string pw = where + ".sparse." + part;
+      if (!sp[part].is_object()) fail(doc.path, pw + " is not an object");
+      integers(sp[part], {"bufferView", "byteOffset", "componentType"}, pw);
+    }
+  }
+  const json& meshes = array_or_empty(j, "meshes");
+  for (size_t m = 0; m < meshes.size(); ++m) {
+    if (!meshes[m].contains("primitives")) continue;
+    const json& prims = meshes[m]["primitives"];
+    if (!prims.is_array()) fail(doc.path, "meshes[" + std::to_string(m) + "].primitives is not an array");
+    for (size_t p = 0; p < prims.size(); ++p) {
+      const std::string where = primitive_name(m, p);
+      if (!prims[p].is_object()) fail(doc.path, where + " is not an object");
+      for (const char* key : {"attributes", "extensions"})
+        if (prims[p].contains(key) && !prims[p][key].is_object())
+          fail(doc.path, where + "." + key + " is not an object");
+      integers(prims[p], {"mode", "indices", "material"}, where);
+      if (prims[p].contains("attributes"))
+        for (const auto& [name, index] : prims[p]["attributes"].items())
+          if (!index.is_number_integer()) fail(doc.path, where + ".attributes." + name + " is not an integer");
+    }
+  }
+}
+
 }  // namespace
 
 bool is_gltf_path(const std::string& path) {
@@ -228,6 +293,7 @@ Document read_document(const std::string& path) {
     doc.buffers.push_back(std::move(data));
   }
   check_buffer_views(doc);
+  check_member_types(doc);
   return doc;
 }
 

@@ -9,6 +9,7 @@ namespace prm::gltf {
 namespace {
 
 constexpr const char* kMeshopt = "EXT_meshopt_compression";
+constexpr size_t kMaxExpansion = 64;  // decoded bytes per compressed byte, at most (decode_meshopt_views)
 
 [[noreturn]] void fail(const Document& doc, const std::string& what) { throw InputError(doc.path + ": " + what); }
 
@@ -24,6 +25,10 @@ size_t decode_meshopt_views(Document& doc) {
     const std::string where = "bufferViews[" + std::to_string(i) + "].extensions." + kMeshopt;
     for (const char* key : {"buffer", "byteLength", "byteStride", "count"})
       if (!ext.contains(key) || !ext[key].is_number_unsigned()) fail(doc, where + "." + key + " is missing or not a non-negative integer");
+    if (ext.contains("byteOffset") && !ext["byteOffset"].is_number_unsigned())
+      fail(doc, where + ".byteOffset is not a non-negative integer");
+    for (const char* key : {"mode", "filter"})
+      if (ext.contains(key) && !ext[key].is_string()) fail(doc, where + "." + key + " is not a string");
     const size_t buffer = ext["buffer"].get<size_t>(), offset = ext.value("byteOffset", size_t{0}),
                  length = ext["byteLength"].get<size_t>(), stride = ext["byteStride"].get<size_t>(),
                  count = ext["count"].get<size_t>();
@@ -33,6 +38,13 @@ size_t decode_meshopt_views(Document& doc) {
       fail(doc, where + ": byteOffset + byteLength reach past the end of buffers[" + std::to_string(buffer) + "]");
     if (stride == 0 || stride > 256 || count > (size_t{1} << 28))
       fail(doc, where + ": byteStride " + std::to_string(stride) + " / count " + std::to_string(count) + " out of range");
+    // No meshopt codec expands its input more than 64 times (the vertex codec's densest block: a 2-bit header per 16
+    // zero bytes; the index codecs write at least a byte per triangle or index): a larger claim is refused before
+    // count x byteStride bytes are allocated for it.
+    if (count * stride > kMaxExpansion * length)
+      fail(doc, where + ": count x byteStride = " + std::to_string(count * stride) + " bytes from " +
+                    std::to_string(length) + " compressed bytes, more than meshopt's codecs expand to (" +
+                    std::to_string(kMaxExpansion) + " to 1)");
     std::vector<uint8_t> out(count * stride);
     const uint8_t* src = doc.buffers[buffer].data() + offset;
     int rc = -1;

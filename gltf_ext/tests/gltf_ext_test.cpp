@@ -169,6 +169,77 @@ TEST(GltfDocument, HostileContainersAreRefusedByName) {
   expect_input_error(p, "not base64");
 }
 
+// Members of the wrong JSON type were left to nlohmann's type_error inside `prm info`, `prm unpack` and `prm pack`
+// (exit 70, "internal error"; found by hand, with crafted assets, while writing gltf_ext/fuzz/gltf_ext_fuzzer.cpp):
+// read_document names them.
+TEST(GltfDocument, MembersOfTheWrongTypeAreRefusedByName) {
+  const std::string p = temp_path("wrong_type.glb");
+  const auto with = [&](const std::string& members) {
+    write_bytes(p, glb(R"({"asset":{"version":"2.0"},)" + members + "}", {}));
+  };
+  with(R"("meshes":[{"primitives":[{"attributes":{},"mode":"x"}]}])");
+  expect_input_error(p, "meshes[0].primitives[0].mode is not an integer");
+  with(R"("meshes":[{"name":5,"primitives":[]}])");
+  expect_input_error(p, "meshes[0].name is not a string");
+  with(R"("extensionsUsed":[1])");
+  expect_input_error(p, "extensionsUsed[0] is not a string");
+  with(R"("extensionsRequired":{})");
+  expect_input_error(p, "extensionsRequired is not an array");
+  with(R"("meshes":[7])");
+  expect_input_error(p, "meshes[0] is not an object");
+  with(R"("meshes":[{"primitives":{}}])");
+  expect_input_error(p, "meshes[0].primitives is not an array");
+  with(R"("meshes":[{"primitives":[{"attributes":[]}]}])");
+  expect_input_error(p, "meshes[0].primitives[0].attributes is not an object");
+  with(R"("meshes":[{"primitives":[{"attributes":{},"extensions":3}]}])");
+  expect_input_error(p, "meshes[0].primitives[0].extensions is not an object");
+  // Read as integers by the Draco input (`prm unpack`).
+  with(R"("meshes":[{"primitives":[{"attributes":{"POSITION":"0"}}]}])");
+  expect_input_error(p, "meshes[0].primitives[0].attributes.POSITION is not an integer");
+  with(R"("meshes":[{"primitives":[{"attributes":{},"indices":[1]}]}])");
+  expect_input_error(p, "meshes[0].primitives[0].indices is not an integer");
+  // Read by read_accessor (`prm pack` of a .glb, Draco primitives in `prm unpack`).
+  with(R"("accessors":[{"componentType":"x","count":1,"type":"VEC3"}])");
+  expect_input_error(p, "accessors[0].componentType is not an integer");
+  with(R"("accessors":[{"componentType":5126,"count":1,"type":"VEC3","normalized":1}])");
+  expect_input_error(p, "accessors[0].normalized is not a boolean");
+  with(R"("accessors":[{"componentType":5126,"count":1,"type":3}])");
+  expect_input_error(p, "accessors[0].type is not a string");
+  with(R"("accessors":[{"componentType":5126,"count":1,"type":"VEC3","sparse":{"count":1,"indices":{"bufferView":"0"}}}])");
+  expect_input_error(p, "accessors[0].sparse.indices.bufferView is not an integer");
+  with(R"("buffers":[{"byteLength":4,"uri":"data:application/octet-stream;base64,AAAAAA=="}],
+          "bufferViews":[{"buffer":0,"byteLength":4,"byteStride":"x"}])");
+  expect_input_error(p, "bufferViews[0].byteStride is not an integer");
+  with(R"("meshes":[{"name":"ok","primitives":[{"attributes":{},"mode":4}]}],"extensionsUsed":["X"])");
+  EXPECT_NO_THROW(read_document(p));
+}
+
+// EXT_meshopt_compression claims (found by hand while writing gltf_ext/fuzz/gltf_ext_fuzzer.cpp): a 16-byte view
+// that claims 2^28 x 256 decoded bytes was allocated before decoding (`prm unpack`: out of memory, exit 3), and a mode or
+// filter that is not a string threw nlohmann's type_error (exit 70). Both are refused by name.
+TEST(GltfMeshopt, ClaimsBeyondTheDataAndMistypedFieldsAreRefusedByName) {
+  const auto expect_refused = [](const std::string& ext, const std::string& fragment) {
+    Document doc;
+    doc.path = "meshopt.glb";
+    doc.json = json::parse(R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":16}],
+        "bufferViews":[{"buffer":0,"byteLength":16,"extensions":{"EXT_meshopt_compression":)" + ext + "}}]}");
+    doc.buffers = {std::vector<uint8_t>(16, 0)};
+    try {
+      decode_meshopt_views(doc);
+      ADD_FAILURE() << "no error for " << ext;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+    }
+  };
+  expect_refused(R"({"buffer":0,"byteLength":16,"byteStride":256,"count":268435456,"mode":"ATTRIBUTES"})",
+                 "count x byteStride = 68719476736 bytes from 16 compressed bytes, more than meshopt's codecs expand to");
+  expect_refused(R"({"buffer":0,"byteLength":16,"byteStride":4,"count":3,"mode":5})", ".mode is not a string");
+  expect_refused(R"({"buffer":0,"byteLength":16,"byteStride":4,"count":3,"mode":"TRIANGLES","filter":[]})",
+                 ".filter is not a string");
+  expect_refused(R"({"buffer":0,"byteOffset":"0","byteLength":16,"byteStride":4,"count":3,"mode":"TRIANGLES"})",
+                 ".byteOffset is not a non-negative integer");
+}
+
 TEST(GltfPackScene, KeepsWhatPrmCannotCarryAndSaysWhy) {
   // Five primitives over the cube: TEXCOORD_0, COLOR_0, morph target, strip mode, skinned mesh; one plain one.
   Document doc = document_from_mesh(cube(), "cube");

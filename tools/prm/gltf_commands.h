@@ -10,6 +10,9 @@ namespace prm::cli {
 
 bool is_gltf_file_path(const std::string& path);
 
+// The size of a file in bytes, 0 when it cannot be read (for the reports).
+size_t file_size(const std::string& path);
+
 // prm pack IN -o OUT.glb|.gltf: IN a glTF asset (every primitive it can carry compressed, the rest kept) or any mesh
 // file (one primitive). Prints the per-primitive report (text or JSON).
 void run_gltf_pack(const std::string& input, const std::string& output, const pipeline::PackOptions& options,
