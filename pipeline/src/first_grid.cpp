@@ -4,11 +4,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
-#include "prm/vec3.h"
+#include "prm/dihedral_edges.h"
 
 namespace prm::pipeline {
 
@@ -16,37 +15,17 @@ SurfaceGridStatistics surface_grid_statistics(const Mesh& input, double unit, do
   SurfaceGridStatistics out;
   const size_t nf = input.triangles.size();
   if (!(unit > 0) || nf == 0) return out;
-  std::vector<Vec3> normal(nf), centroid(nf);
-  std::vector<double> area(nf);
+  const FaceFrames frames = face_frames(input);
   double total_area = 0;
-  for (size_t f = 0; f < nf; ++f) {
-    const Tri& t = input.triangles[f];
-    const Vec3 n2 = triangle_normal_area2(input.positions[t[0]], input.positions[t[1]], input.positions[t[2]]);
-    area[f] = 0.5 * norm(n2);
-    total_area += area[f];
-    normal[f] = area[f] > 0 ? n2 * (0.5 / area[f]) : Vec3{0, 0, 0};
-    centroid[f] = (input.positions[t[0]] + input.positions[t[1]] + input.positions[t[2]]) * (1.0 / 3.0);
-  }
-  std::unordered_map<uint64_t, uint32_t> first;  // undirected edge -> the first face seen
-  first.reserve(3 * nf);
+  for (size_t f = 0; f < nf; ++f) total_area += frames.area[f];
   std::vector<std::pair<double, double>> edges;  // theta^2 l, d
   double k2 = 0, kabs = 0, length = 0;
-  for (uint32_t f = 0; f < nf; ++f)
-    for (size_t k = 0; k < 3; ++k) {
-      const uint32_t a = input.triangles[f][k], b = input.triangles[f][(k + 1) % 3];
-      const uint64_t key = uint64_t{std::min(a, b)} << 32 | std::max(a, b);
-      const auto [it, inserted] = first.emplace(key, f);
-      if (inserted) continue;
-      const uint32_t g = it->second;
-      const double d = norm(centroid[f] - centroid[g]);
-      if (!(d > 0) || !(area[f] > 0) || !(area[g] > 0)) continue;
-      const double theta = std::acos(std::clamp(dot(normal[f], normal[g]), -1.0, 1.0));
-      const double l = norm(input.positions[a] - input.positions[b]);
-      edges.push_back({theta * theta * l, d});
-      k2 += theta * theta * l / d;
-      kabs += theta * l;
-      length += l;
-    }
+  for_each_dihedral_edge(input, frames, [&](uint32_t, uint32_t, double theta, double l, double d) {
+    edges.push_back({theta * theta * l, d});
+    k2 += theta * theta * l / d;
+    kabs += theta * l;
+    length += l;
+  });
   if (edges.empty() || !(total_area > 0)) return out;
   auto model_error = [&](double g) {
     double s = 0;

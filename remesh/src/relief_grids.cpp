@@ -8,40 +8,22 @@
 
 #include <tbb/parallel_for.h>
 
+#include "prm/dihedral_edges.h"
 #include "prm/remesh/resample.h"
 #include "prm/vec3.h"
 
 namespace prm::remesh {
 
 ReliefDetail measure_relief_detail(const Mesh& input, const ReliefLayout& layout) {
-  const size_t nf = input.triangles.size();
-  std::vector<Vec3> normal(nf), centroid(nf);
-  std::vector<double> area(nf), integrated(nf, 0.0);
-  for (size_t f = 0; f < nf; ++f) {
-    const Tri& t = input.triangles[f];
-    const Vec3 n2 = triangle_normal_area2(input.positions[t[0]], input.positions[t[1]], input.positions[t[2]]);
-    area[f] = 0.5 * norm(n2);
-    normal[f] = area[f] > 0 ? n2 * (0.5 / area[f]) : Vec3{0, 0, 0};
-    centroid[f] = (input.positions[t[0]] + input.positions[t[1]] + input.positions[t[2]]) * (1.0 / 3.0);
-  }
   // Each interior edge once: dihedral^2 x length / centroid distance, half to each side (an integral of the
   // squared curvature over the strip between the centroids).
-  std::unordered_map<uint64_t, uint32_t> first;  // undirected edge -> the first face seen
-  first.reserve(3 * nf);
-  for (uint32_t f = 0; f < nf; ++f)
-    for (size_t k = 0; k < 3; ++k) {
-      const uint32_t a = input.triangles[f][k], b = input.triangles[f][(k + 1) % 3];
-      const uint64_t key = uint64_t{std::min(a, b)} << 32 | std::max(a, b);
-      const auto [it, inserted] = first.emplace(key, f);
-      if (inserted) continue;
-      const uint32_t g = it->second;
-      const double d = norm(centroid[f] - centroid[g]);
-      if (!(d > 0) || !(area[f] > 0) || !(area[g] > 0)) continue;
-      const double angle = std::acos(std::clamp(dot(normal[f], normal[g]), -1.0, 1.0));
-      const double k2 = 0.5 * angle * angle * norm(input.positions[a] - input.positions[b]) / d;
-      integrated[f] += k2;
-      integrated[g] += k2;
-    }
+  const FaceFrames frames = face_frames(input);
+  std::vector<double> integrated(input.triangles.size(), 0.0);
+  for_each_dihedral_edge(input, frames, [&](uint32_t f, uint32_t g, double angle, double length, double d) {
+    const double k2 = 0.5 * angle * angle * length / d;
+    integrated[f] += k2;
+    integrated[g] += k2;
+  });
   ReliefDetail out;
   out.area.assign(layout.reliefs.size(), 0.0);
   out.curvature2.assign(layout.reliefs.size(), 0.0);
@@ -52,7 +34,7 @@ ReliefDetail measure_relief_detail(const Mesh& input, const ReliefLayout& layout
     const size_t s = layout.source_face.empty() ? f : static_cast<size_t>(layout.source_face[f]);
     const size_t r = static_cast<size_t>(layout.face_relief[f]);
     out.area[r] += a;
-    if (area[s] > 0) out.curvature2[r] += a * integrated[s] / area[s];
+    if (frames.area[s] > 0) out.curvature2[r] += a * integrated[s] / frames.area[s];
   }
   for (size_t r = 0; r < out.area.size(); ++r)
     if (out.area[r] > 0) out.curvature2[r] /= out.area[r];
