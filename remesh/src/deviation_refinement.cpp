@@ -1104,7 +1104,8 @@ size_t round_towards_input(PrmMesh& prm, const Mesh& input, const AabbTree& inpu
   const std::vector<Vec3> unrounded = m.positions;
   std::vector<uint8_t> put(m.positions.size(), 0);
   size_t changed = 0;
-  for (const auto& [unused, v] : order) {
+  for (const auto& entry : order) {
+    const uint32_t v = entry.second;  // not a structured binding: the lambdas below capture it (C++17)
     const std::vector<uint32_t>& faces = vertex_faces[v];
     const std::vector<Tri> tris = triangles_of(m, faces);
     std::vector<uint32_t> points;
