@@ -126,8 +126,9 @@ void add_pack_command(CLI::App& root) {
                     std::to_string(pipeline::kLocalRefineShare * pipeline::kDefaultMaxErrorPerTarget).substr(0, 3) +
                     " x --target-error from the input (thin sheets the grid cuts off, lattice vertices off the input; "
                     "near that bound, the rounding to the step that strays least; bench/README.md 'Worst-case error': the "
-                    "horse's max from 25x to 7.6x the target for +5.9% bytes, venus from 16x to 7.5x for +4.7%, the feline "
-                    "from 19x to 7.4x for +1.0%, bunny_zipper from 14x to 7.5x for +4.6%)");
+                    "horse's max from 25x to 7.6x the target for +4.0% bytes, venus from 16x to 7.5x for +3.9%, the feline "
+                    "from 19x to 7.4x for +0.9%, bunny_zipper from 14x to 7.5x for +3.3%; opt-in: it turns a few "
+                    "triangles away from the input)");
   cmd->add_flag("--adaptive", opt->adaptive,
                 "A grid size per relief (format 1.5, spec §8.4.2): each relief's grid chosen by equal slope (the same "
                 "marginal bytes per unit of squared error in every relief) from its error measured on two uniform "
