@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "clers_shared.h"
+#include "position_residual_encode.h"
 #include "position_shared.h"
 #include "range_decoder.h"
 #include "range_encoder.h"
@@ -69,7 +70,7 @@ __attribute__((noinline)) inline bool today_decode_clers(const std::vector<uint8
   return rc.finish();
 }
 
-// §10.4.1, as position_encode.cpp's encode_residual and position_decode.cpp's decode_residual.
+// §10.4.1, with the encoder's own encode_residual; decoded as position_decode.cpp's decode_residual does.
 inline std::vector<uint8_t> today_encode_residuals(const std::vector<ResidualValue>& in) {
   using namespace prm::codec;
   RangeEncoder rc;
@@ -77,24 +78,8 @@ inline std::vector<uint8_t> today_encode_residuals(const std::vector<ResidualVal
   uint32_t block = in.empty() ? 0 : in[0].block;
   for (const ResidualValue& v : in) {
     if (v.block != block) *m = ResidualModels{}, block = v.block;
-    const int axis = static_cast<int>(v.ctx / kResidualContexts), ctx = static_cast<int>(v.ctx % kResidualContexts);
-    RiceState& rice = m->rice[axis][ctx];
-    const int k = rice.k();
-    const uint64_t magnitude = static_cast<uint64_t>(v.r < 0 ? -v.r : v.r);
-    const uint64_t u = v.r >= 0 ? 2 * magnitude : 2 * magnitude - 1;
-    const uint64_t q = u >> k;
-    BitModel* unary = m->unary[axis][ctx];
-    const uint64_t ones = q < kUnaryEscape ? q : kUnaryEscape;
-    for (uint64_t i = 0; i < ones; ++i) rc.encode_bit(unary[i < kUnaryModels ? i : kUnaryModels - 1], 1);
-    if (q < kUnaryEscape)
-      rc.encode_bit(unary[q < kUnaryModels ? q : kUnaryModels - 1], 0);
-    else
-      rc.encode_direct(static_cast<uint32_t>(q - kUnaryEscape), kEscapeBits);
-    if (k > 0) {
-      rc.encode_bit(m->low[axis][k][q < 2 ? q : 2], static_cast<int>((u >> (k - 1)) & 1));
-      if (k > 1) rc.encode_direct(static_cast<uint32_t>(u), k - 1);
-    }
-    rice.update(static_cast<uint32_t>(magnitude));
+    encode_residual(rc, *m, static_cast<int>(v.ctx / kResidualContexts), static_cast<int>(v.ctx % kResidualContexts),
+                    v.r, v.up, v.down);
   }
   return rc.finish();
 }
