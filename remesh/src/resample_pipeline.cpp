@@ -244,6 +244,12 @@ PrmMesh resample_and_merge(const LayoutInput& layout, const ResampleOptions& opt
   prm.face_regular.assign(nf, 0);
   for (size_t f = 0; f < nf; ++f) {
     const auto& t = merged.faces[f];
+    // A face on a vertex the merge removed is a remesher bug (CGAL's elephant-with-holes at 1e-4 makes one): an
+    // error that says so, not a read out of bounds.
+    for (size_t k = 0; k < 3; ++k)
+      if (t[k] < 0 || static_cast<size_t>(t[k]) >= nv)
+        throw std::logic_error("resample_and_merge: the merge left face " + std::to_string(f) + " on vertex " +
+                               std::to_string(t[k]) + " of " + std::to_string(nv) + " (a remesher bug)");
     prm.mesh.triangles[f] = {static_cast<uint32_t>(t[0]), static_cast<uint32_t>(t[1]), static_cast<uint32_t>(t[2])};
     label_face(prm, f);
     st.regular_faces += prm.face_regular[f];
