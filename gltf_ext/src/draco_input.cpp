@@ -4,6 +4,7 @@
 #include <draco/compression/decode.h>
 #include <draco/core/decoder_buffer.h>
 
+#include <cstdint>
 #include <cstring>
 
 #include "prm/error.h"
@@ -87,7 +88,9 @@ size_t decode_draco_primitives(Document& doc, DecompressReport* report) {
         report->codec[{m, p}] = kDraco;
       }
       for (const auto& [semantic, id] : ext["attributes"].items()) {
-        if (!id.is_number_unsigned()) fail(doc, where + ".attributes." + semantic + " is not a Draco attribute id");
+        // Draco's attribute ids are 32-bit (its unique_id): a larger number is refused, not truncated to another id.
+        if (!id.is_number_unsigned() || id.get<uint64_t>() > UINT32_MAX)
+          fail(doc, where + ".attributes." + semantic + " is not a Draco attribute id: " + id.dump());
         const draco::PointAttribute* att = mesh->GetAttributeByUniqueId(id.get<uint32_t>());
         if (!att) fail(doc, where + ".attributes." + semantic + ": the Draco data has no attribute " + id.dump());
         if (!prim.contains("attributes") || !prim["attributes"].contains(semantic))

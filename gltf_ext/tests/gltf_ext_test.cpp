@@ -1,6 +1,8 @@
 // prm_gltf: the document layer (GLB / .gltf, compact), accessors, the extension's rules (normals, field checks),
 // which primitives pack_scene keeps and why, and hostile containers. The end-to-end cases through the prm tool and
 // the Khronos validator are the prm_gltf_cli_* tests (gltf_cli_test.cmake).
+#include <draco/compression/encode.h>
+#include <draco/mesh/triangle_soup_mesh_builder.h>
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -212,6 +214,44 @@ TEST(GltfDocument, MembersOfTheWrongTypeAreRefusedByName) {
   expect_input_error(p, "bufferViews[0].byteStride is not an integer");
   with(R"("meshes":[{"name":"ok","primitives":[{"attributes":{},"mode":4}]}],"extensionsUsed":["X"])");
   EXPECT_NO_THROW(read_document(p));
+}
+
+// KHR_draco_mesh_compression's attribute ids are Draco's 32-bit unique ids: 2^32 was read as id 0 (the positions),
+// with no error (found by hfuzz4's review of gltf_ext/src/draco_input.cpp). It is refused by name; 0 decodes.
+TEST(GltfDraco, AnAttributeIdBeyond32BitsIsRefusedNotTruncated) {
+  draco::TriangleSoupMeshBuilder builder;
+  builder.Start(1);
+  const int pos = builder.AddAttribute(draco::GeometryAttribute::POSITION, 3, draco::DT_FLOAT32);
+  builder.SetAttributeValuesForFace(pos, draco::FaceIndex(0), draco::Vector3f(0, 0, 0).data(),
+                                    draco::Vector3f(1, 0, 0).data(), draco::Vector3f(0, 1, 0).data());
+  const std::unique_ptr<draco::Mesh> mesh = builder.Finalize();
+  ASSERT_TRUE(mesh);
+  ASSERT_EQ(mesh->attribute(pos)->unique_id(), 0u);
+  draco::EncoderBuffer encoded;
+  draco::Encoder encoder;
+  ASSERT_TRUE(encoder.EncodeMeshToBuffer(*mesh, &encoded).ok());
+  const auto document_with_id = [&](uint64_t id) {
+    Document doc;
+    doc.path = "draco.glb";
+    doc.json = {{"asset", {{"version", "2.0"}}}};
+    const int view = add_buffer_view(doc, std::vector<uint8_t>(encoded.data(), encoded.data() + encoded.size()));
+    const int acc = add_empty_accessor(doc, 3, kFloat, "VEC3");
+    doc.json["meshes"] = json::array({{{"primitives", json::array({{
+        {"attributes", {{"POSITION", acc}}},
+        {"extensions", {{"KHR_draco_mesh_compression", {{"bufferView", view}, {"attributes", {{"POSITION", id}}}}}}}}})}}});
+    return doc;
+  };
+  Document ok = document_with_id(0);
+  EXPECT_EQ(decode_draco_primitives(ok, nullptr), 1u);
+  EXPECT_EQ(read_accessor(ok, 0, "t").count, 3u);
+  Document hostile = document_with_id(uint64_t{1} << 32);
+  try {
+    decode_draco_primitives(hostile, nullptr);
+    ADD_FAILURE() << "an attribute id of 2^32 was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("attributes.POSITION is not a Draco attribute id: 4294967296"), std::string::npos)
+        << e.what();
+  }
 }
 
 // EXT_meshopt_compression claims (found by hand while writing gltf_ext/fuzz/gltf_ext_fuzzer.cpp): a 16-byte view
