@@ -54,6 +54,8 @@ inline Measured pack_and_check(const std::string& name, const Mesh& input, doubl
   m.loops_out = after.boundary_loops;
   EXPECT_GT(m.loops_in, 0u);
   EXPECT_EQ(r.repair.holes_filled, 0u);
+  EXPECT_FALSE(r.boundary_fallback) << (r.repair.notes.empty() ? std::string() : r.repair.notes.back());
+  EXPECT_EQ(r.mode, prm::pipeline::PackMode::prm);
   EXPECT_EQ(r.boundary_loops_in, m.loops_in);
   EXPECT_EQ(r.boundary_loops_out, m.loops_out);
   EXPECT_EQ(m.loops_out, m.loops_in);

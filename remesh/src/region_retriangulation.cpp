@@ -89,7 +89,11 @@ bool SeamOptimizer::retriangulate_region(const std::vector<VH>& S) {
       best[i * n + j] = b;
     }
   if (!(best[n - 1] > 0)) return false;
-  for (FH f : F) mesh_.delete_face(f, true);
+  // Only S's vertices go with the faces. A ring vertex on the mesh boundary may have every face in F (its boundary
+  // edges are then sides of the polygon): OpenMesh's delete_face(f, true) would delete it too, and the new faces
+  // would stand on a deleted vertex (CGAL's elephant-with-holes at --target-error 1e-4, issue 22).
+  for (FH f : F) mesh_.delete_face(f, false);
+  for (VH v : S) mesh_.delete_vertex(v, false);
   // Post-order: every triangle added is an ear of what is left of the hole.
   std::vector<std::array<size_t, 3>> tris;
   std::vector<std::pair<size_t, size_t>> stack{{0, n - 1}};
