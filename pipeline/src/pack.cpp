@@ -155,6 +155,7 @@ Remeshed remesh_at(const SearchContext& ctx, const PackOptions& options, int bit
     po.height_lambda = options.height_lambda;
   }
   po.height_sweeps = options.height_sweeps;
+  if (ctx.plan.predicted_heights_only) po.height_depth = codec::kLinearPredictionDepth;
   po.seam_context = options.max_minor >= codec::kFormatMinorSeam ? -1 : 0;
   po.patch_contexts = options.max_minor >= codec::kFormatMinorPatchContexts;
   po.patch_grids = options.max_minor >= codec::kFormatMinorPatchGrids;
@@ -439,6 +440,7 @@ EffortPlan effort_plan(int effort) {
       p.decode_in_band = true; p.error_samples = 1; p.error_unit_stride = 16; p.lambda_below = 0.97;
       p.first_grid_gate = 0.9;
       p.lambda_full_density = true;
+      p.predicted_heights_only = true;
       break;
     case 1: p.steps = 1; p.search_samples_per_face = 2; p.lambda_rounds = 3; p.grid_tolerance = 0.1; p.accept_error = 0.85; break;
     case 2: p.steps = 1; p.search_samples_per_face = 4; p.lambda_rounds = 4; p.grid_tolerance = 0.06; p.accept_error = 0.9; break;

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "prm/vec3.h"
+#include "openmesh_edits.h"
 #include "seam_optimizer.h"
 
 namespace prm::remesh {
@@ -62,7 +63,7 @@ bool SeamOptimizer::repair_face(FH f) {
       }
     }
   if (best.is_valid()) {
-    mesh_.collapse(best);
+    remesh::collapse(mesh_, best);
     return true;
   }
   // A flip that leaves fewer bad triangles among the two it touches.
@@ -230,9 +231,9 @@ bool SeamOptimizer::collapse_face(FH f) {
     const VH x1 = corner[(k + 1) % 3], x2 = corner[(k + 2) % 3];
     HH h1 = mesh_.find_halfedge(x1, y);
     if (!h1.is_valid() || !is_collapse_ok(mesh_, h1) || moves_boundary(h1)) continue;
-    mesh_.collapse(h1);
+    remesh::collapse(mesh_, h1);
     const HH h2 = mesh_.find_halfedge(x2, y);
-    if (h2.is_valid() && is_collapse_ok(mesh_, h2) && !moves_boundary(h2)) mesh_.collapse(h2);
+    if (h2.is_valid() && is_collapse_ok(mesh_, h2) && !moves_boundary(h2)) remesh::collapse(mesh_, h2);
     return true;
   }
   return false;

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "prm/vec3.h"
+#include "openmesh_edits.h"
 #include "seam_optimizer.h"
 
 namespace prm::remesh {
@@ -107,7 +108,7 @@ bool SeamOptimizer::retriangulate_region(const std::vector<VH>& S) {
     stack.push_back({k, j});
   }
   for (auto it = tris.rbegin(); it != tris.rend(); ++it) {
-    const FH f = mesh_.add_face(ring[(*it)[0]], ring[(*it)[1]], ring[(*it)[2]]);
+    const FH f = add_triangle(mesh_, ring[(*it)[0]], ring[(*it)[1]], ring[(*it)[2]]);
     if (!f.is_valid()) throw std::logic_error("seam repair: a retriangulated region did not close");
   }
   return true;

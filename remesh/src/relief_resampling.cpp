@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "collapse_rules.h"
+#include "openmesh_edits.h"
 #include "openmesh_queries.h"
 
 namespace prm::remesh {
@@ -25,7 +26,8 @@ class Resampler {
     mesh_.reserve(s.vertices.size(), edges, s.faces.size());
     for (const SliceVertex& v : s.vertices) mesh_.add_vertex(OMesh::Point(v.position[0], v.position[1], v.position[2]));
     for (const auto& f : s.faces) {
-      const auto fh = mesh_.add_face(OMesh::VertexHandle(f[0]), OMesh::VertexHandle(f[1]), OMesh::VertexHandle(f[2]));
+      const auto fh =
+          add_triangle(mesh_, OMesh::VertexHandle(f[0]), OMesh::VertexHandle(f[1]), OMesh::VertexHandle(f[2]));
       if (!fh.is_valid()) throw std::logic_error("resample_relief: the sliced relief is not a manifold");
     }
   }
@@ -126,7 +128,7 @@ class Resampler {
       best_rank = rank;
     }
     if (!best.is_valid()) return false;
-    mesh_.collapse(best);
+    remesh::collapse(mesh_, best);
     return true;
   }
 

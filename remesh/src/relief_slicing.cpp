@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <iterator>
 #include <numeric>
 #include <stdexcept>
 #include <unordered_map>
@@ -114,8 +116,10 @@ SlicedRelief slice_relief(const ReliefMeshView& view, const std::vector<int32_t>
         out.vertices[static_cast<size_t>(corner_vertex[3 * li + (k + 1) % 3])].boundary = true;
       }
 
-  // 2. Crossings of every edge with the three families of grid lines, ordered from the lower refined vertex.
-  std::vector<std::vector<int32_t>> crossing_lists;
+  // 2. Crossings of every edge with the three families of grid lines, ordered from the lower refined vertex: edge
+  // e's are crossings[crossing_begin[e] .. crossing_begin[e + 1]) (one array for all, not one allocation an edge).
+  std::vector<int32_t> crossings;
+  std::vector<size_t> crossing_begin{0};
   std::vector<int32_t> edge_list(3 * n, -1);
   for (size_t li = 0; li < n; ++li) {
     const int32_t f = faces[li];
@@ -127,7 +131,6 @@ SlicedRelief slice_relief(const ReliefMeshView& view, const std::vector<int32_t>
       const auto& Fb = view.F(slot, b);
       const Vec3& Pa = view.position(a);
       const Vec3& Pb = view.position(b);
-      std::vector<int32_t> list;
       for (int fam = 0; fam < 3; ++fam) {
         const double lo = std::min(Fa[static_cast<size_t>(fam)], Fb[static_cast<size_t>(fam)]);
         const double hi = std::max(Fa[static_cast<size_t>(fam)], Fb[static_cast<size_t>(fam)]);
@@ -146,15 +149,16 @@ SlicedRelief slice_relief(const ReliefMeshView& view, const std::vector<int32_t>
           sv.edge_b = b;
           sv.t = t;
           sv.source_face = view.source(f);
-          list.push_back(static_cast<int32_t>(out.vertices.size()));
+          crossings.push_back(static_cast<int32_t>(out.vertices.size()));
           out.vertices.push_back(sv);
         }
       }
-      std::sort(list.begin(), list.end(), [&](int32_t x, int32_t y) {
-        return out.vertices[static_cast<size_t>(x)].t < out.vertices[static_cast<size_t>(y)].t;
-      });
-      const int32_t id = static_cast<int32_t>(crossing_lists.size());
-      crossing_lists.push_back(std::move(list));
+      std::sort(crossings.begin() + static_cast<std::ptrdiff_t>(crossing_begin.back()), crossings.end(),
+                [&](int32_t x, int32_t y) {
+                  return out.vertices[static_cast<size_t>(x)].t < out.vertices[static_cast<size_t>(y)].t;
+                });
+      const int32_t id = static_cast<int32_t>(crossing_begin.size() - 1);
+      crossing_begin.push_back(crossings.size());
       edge_list[3 * li + k] = id;
       const int32_t g = view.opposite[static_cast<size_t>(f)][k];
       if (in_relief(g)) {
@@ -170,23 +174,27 @@ SlicedRelief slice_relief(const ReliefMeshView& view, const std::vector<int32_t>
   // 3 and 4, per face: lattice points inside, then the pieces cut by the grid lines, fanned into triangles.
   std::vector<LatticeSlot> slots;
   std::vector<std::vector<int32_t>> polys, next;
+  std::vector<int32_t> boundary;  // per face, reused
+  std::vector<std::pair<int64_t, double>> alpha_hits;
   for (size_t li = 0; li < n; ++li) {
     const Tri& t = tri(li);
     std::array<int32_t, 3> cv;
     for (size_t k = 0; k < 3; ++k) cv[k] = corner_vertex[3 * li + k];
     // The boundary polygon in the face's orientation.
-    std::vector<int32_t> boundary;
+    boundary.clear();
     for (size_t k = 0; k < 3; ++k) {
       boundary.push_back(cv[k]);
-      const auto& list = crossing_lists[static_cast<size_t>(edge_list[3 * li + k])];
+      const size_t e = static_cast<size_t>(edge_list[3 * li + k]);
+      const auto first = crossings.begin() + static_cast<std::ptrdiff_t>(crossing_begin[e]);
+      const auto last = crossings.begin() + static_cast<std::ptrdiff_t>(crossing_begin[e + 1]);
       if (t[k] < t[(k + 1) % 3])
-        boundary.insert(boundary.end(), list.begin(), list.end());
+        boundary.insert(boundary.end(), first, last);
       else
-        boundary.insert(boundary.end(), list.rbegin(), list.rend());
+        boundary.insert(boundary.end(), std::make_reverse_iterator(last), std::make_reverse_iterator(first));
     }
     // Lattice points: along each alpha = i line, between its two crossings with the face's edges.
     slots.clear();
-    std::vector<std::pair<int64_t, double>> alpha_hits;
+    alpha_hits.clear();
     for (int32_t v : boundary) {
       const SliceVertex& sv = out.vertices[static_cast<size_t>(v)];
       if (sv.kind == SliceKind::Crossing && sv.family == 0) alpha_hits.push_back({sv.value, sv.F[1]});

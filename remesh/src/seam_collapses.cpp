@@ -6,6 +6,7 @@
 #include <queue>
 
 #include "prm/vec3.h"
+#include "openmesh_edits.h"
 #include "seam_optimizer.h"
 
 namespace prm::remesh {
@@ -26,7 +27,7 @@ size_t SeamOptimizer::merge_coincident() {
     if (mesh_.status(x).deleted() || mesh_.status(y).deleted()) continue;
     const HH h = mesh_.find_halfedge(x, y);
     if (h.is_valid() && is_collapse_ok(mesh_, h) && !moves_boundary(h)) {
-      mesh_.collapse(h);
+      remesh::collapse(mesh_, h);
       ++merged;
     }
   }
@@ -105,7 +106,7 @@ size_t SeamOptimizer::collapse_seam_vertices() {
       push_best(x);
       continue;
     }
-    mesh_.collapse(h);
+    remesh::collapse(mesh_, h);
     ++count;
     for (auto w : mesh_.vv_range(y)) push_best(w);
   }

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "prm/vec3.h"
+#include "openmesh_edits.h"
 #include "seam_optimizer.h"
 
 namespace prm::remesh {
@@ -38,7 +39,7 @@ SeamOptimizer::SeamOptimizer(MergedMesh& m, const Mesh& input, const std::vector
     mesh_.add_vertex(OMesh::Point(v.position[0], v.position[1], v.position[2]));
   for (size_t f = 0; f < m.faces.size(); ++f) {
     const auto& t = m.faces[f];
-    const FH fh = mesh_.add_face(VH(t[0]), VH(t[1]), VH(t[2]));
+    const FH fh = add_triangle(mesh_, VH(t[0]), VH(t[1]), VH(t[2]));
     if (!fh.is_valid()) throw std::logic_error("merge_reliefs: the merged mesh is not a manifold");
   }
 }

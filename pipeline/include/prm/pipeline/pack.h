@@ -176,6 +176,10 @@ struct EffortPlan {
   // on horse, venus and bunny_zipper, where the constant's is 0.88-0.94 and a finer grid costs bytes and time
   // (bench/README.md "pack effort", twelfth round).
   double first_grid_gate = 0;
+  // The heights coded by linear prediction (§9.7, its self-overlapping patches at difference depth 3) without
+  // trying the seven difference depths first: one patch-section pass of the search's rounded-heights encode instead
+  // of eight.
+  bool predicted_heights_only = false;
 };
 EffortPlan effort_plan(int effort);  // throws std::invalid_argument outside kMinEffort..kMaxEffort
 constexpr double kHeightTolerance = 1.5;
