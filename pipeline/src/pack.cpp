@@ -22,6 +22,7 @@
 #include "prm/remesh/lattice.h"
 #include "prm/remesh/relief_grids.h"
 #include "height_guard.h"
+#include "prm/pipeline/stream_check.h"
 
 namespace prm::pipeline {
 
@@ -144,6 +145,7 @@ Remeshed remesh_at(const SearchContext& ctx, const PackOptions& options, int bit
   // The notch steps (DeviationRefinementOptions::lattice_moves .. stray_check) only for --local-refinement: with
   // --max-error the search keeps the first thin-sheet refinement (bench/README.md "Worst-case error", h22thin3).
   ro.refine_notches = !(options.max_error > 0);
+  ro.refine_facing_guard = options.refine_facing_guard;
   ro.refine_last = options.refine_deviations && !(options.max_error > 0);  // issue 21's CPU budget (h22max5)
   // The search measures what the decoder will output: the candidate quantized to the stream's frame (its lattice
   // vertices are exact already; the heights and the other vertices round to the nearest step), or, when the
@@ -235,6 +237,18 @@ PackResult finish_at(const SearchContext& ctx, const PackOptions& options, Remes
     if (&ctx.search != &ctx.full) e.rms *= rm.sparse_bias;
     return e;
   };
+  // With the local refinement (no max_error), heights chosen by rate and distortion must not turn a triangle away from
+  // the input either (issue 22 item 3; the refinement's small triangles beside lattice vertices: CGAL's elephant at
+  // 5e-4, one): a lambda whose stream has more than the rounded heights' is refused like one that misses the target.
+  const bool facing_guard = options.refine_deviations && options.refine_facing_guard && !(options.max_error > 0);
+  const size_t base_turned = [&] {
+    if (!facing_guard) return size_t{0};
+    const auto decoded = codec::decode(out.stream.data(), out.stream.size());
+    return decoded.ok() ? count_turned(to_mesh(decoded.value), ctx.full.mesh(), ctx.full.tree()) : size_t{0};
+  }();
+  const auto turns_more = [&](const Mesh& m) {
+    return facing_guard && count_turned(m, ctx.full.mesh(), ctx.full.tree()) > base_turned;
+  };
   // The error left below the target buys smaller residuals: the largest lambda that still meets it.
   if (options.optimize_heights && options.height_lambda <= 0 && options.target_error > 0 &&
       !(ctx.plan.lambda_below > 0 && out.remesh.error.rms >= ctx.plan.lambda_below * rm.target)) {
@@ -274,7 +288,8 @@ PackResult finish_at(const SearchContext& ctx, const PackOptions& options, Remes
       // A stream refused for its triangles or its points is not measured (h22max8: the feline's bisection refused
       // three of its four lambdas so, 0.34 s CPU each).
       const auto measure_unless_refused = [&](const Mesh& m) {
-        return zero_area > 0 || coincident > base_coincident ? remesh::ErrorEstimate{HUGE_VAL, HUGE_VAL} : measure(m);
+        return zero_area > 0 || coincident > base_coincident || turns_more(m) ? remesh::ErrorEstimate{HUGE_VAL, HUGE_VAL}
+                                                                              : measure(m);
       };
       const remesh::ErrorEstimate e =
           encode_and_measure(out.remesh.prm, o, &report, &stream, measure_unless_refused, &zero_area, &coincident);
@@ -326,7 +341,9 @@ PackResult finish_at(const SearchContext& ctx, const PackOptions& options, Remes
     ProgressJob::rounds_left(1);
     auto full_error = [&](const codec::PrmOptions& o, std::vector<uint8_t>* stream, codec::EncodeReport* report) {
       size_t za = 0;
-      auto full = [&](const Mesh& m) { return measure_with(ctx.full, m); };
+      auto full = [&](const Mesh& m) {
+        return turns_more(m) ? remesh::ErrorEstimate{HUGE_VAL, HUGE_VAL} : measure_with(ctx.full, m);
+      };
       const remesh::ErrorEstimate e = encode_and_measure(out.remesh.prm, o, report, stream, full, &za);
       return za > 0 ? remesh::ErrorEstimate{HUGE_VAL, HUGE_VAL} : e;
     };

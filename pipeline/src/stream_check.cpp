@@ -13,17 +13,21 @@ StreamCheck check_decoded(const codec::DecodedMesh& decoded, const Mesh* referen
   c.zero_area = count_zero_area_triangles(decoded);
   c.coincident = count_coincident_vertices(decoded);
   if (!reference) return c;
-  const Mesh m = to_mesh(decoded);
-  const AabbTree tree(*reference);
+  c.turned = count_turned(to_mesh(decoded), *reference, AabbTree(*reference));
+  return c;
+}
+
+size_t count_turned(const Mesh& m, const Mesh& reference, const AabbTree& reference_tree) {
+  size_t turned = 0;
   for (const Tri& t : m.triangles) {
     const Vec3 &a = m.positions[t[0]], &b = m.positions[t[1]], &d = m.positions[t[2]];
-    const auto hit = tree.closest((a + b + d) * (1.0 / 3.0));
-    const Tri& s = reference->triangles[hit.face];
-    const Vec3 sn = triangle_normal_area2(reference->positions[s[0]], reference->positions[s[1]],
-                                          reference->positions[s[2]]);
-    c.turned += dot(triangle_normal_area2(a, b, d), sn) <= 0;
+    const auto hit = reference_tree.closest((a + b + d) * (1.0 / 3.0));
+    const Tri& s = reference.triangles[hit.face];
+    const Vec3 sn = triangle_normal_area2(reference.positions[s[0]], reference.positions[s[1]],
+                                          reference.positions[s[2]]);
+    turned += dot(triangle_normal_area2(a, b, d), sn) <= 0;
   }
-  return c;
+  return turned;
 }
 
 Mesh pack_reference(const Mesh& input) {

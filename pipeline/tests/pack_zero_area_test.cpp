@@ -34,8 +34,11 @@ constexpr size_t kNoSide = SIZE_MAX;  // a two-sided sheet: facing away from the
 
 // max_turned: faces the quantization turned away from the input, and decoded triangles facing away from it, allowed
 // at each target (kNoSide: not checked).
+// refine: with the local refinement (PackOptions::refine_deviations), its facing guard on or off.
+enum class Refine { none, guarded, unguarded };
 void expect_clean_streams(const prm::Mesh& input, const std::string& name, const std::vector<size_t>& max_turned,
-                          const std::vector<Target>& targets = {std::begin(kTargets), std::end(kTargets)}) {
+                          const std::vector<Target>& targets = {std::begin(kTargets), std::end(kTargets)},
+                          Refine refine = Refine::none) {
   ASSERT_EQ(max_turned.size(), targets.size());
   const prm::Mesh reference = prm::pipeline::pack_reference(input);
   for (size_t k = 0; k < targets.size(); ++k) {
@@ -46,6 +49,8 @@ void expect_clean_streams(const prm::Mesh& input, const std::string& name, const
     o.bits = target.bits;
     o.step_scale = 1;
     o.mode = prm::pipeline::PackMode::prm;  // the remesher's path
+    o.refine_deviations = refine != Refine::none;
+    o.refine_facing_guard = refine == Refine::guarded;
     const prm::pipeline::PackResult r = prm::pipeline::pack(input, o);
     const auto decoded = prm::codec::decode(r.stream.data(), r.stream.size());
     ASSERT_TRUE(decoded.ok()) << decoded.status.message;
@@ -80,6 +85,20 @@ TEST(PackZeroArea, SmallRealMeshes) {
   const std::string dir = std::string(PRM_SHARED_MESHES) + "/";
   expect_clean_streams(prm::read_mesh(dir + "rabbit_1k_decimated.off"), "rabbit_1k_decimated.off", {0, 0});
   expect_clean_streams(prm::read_mesh(dir + "feline_5k.obj"), "feline_5k.obj", {3, 2});
+}
+
+// The local refinement (issue 22 item 3) with its facing guard turns no decoded triangle away from the input where
+// it did without it (elephant at 5e-4: 3, rabbit_1k at 2e-4 and 1e-4: 2 and 11, in h22max8's runs; each unguarded
+// count below is what the guard takes away, so this test fails with the guard off). feline_5k is left out: at 1e-4
+// the guarded refinement still leaves 3 (the unrefined stream 2; bench/README.md "Worst-case error", hrefine).
+TEST(PackZeroArea, LocalRefinementTurnsNoTriangleAway) {
+  const std::string dir = std::string(PRM_SHARED_MESHES) + "/";
+  expect_clean_streams(prm::read_mesh(dir + "rabbit_1k_decimated.off"), "rabbit_1k_decimated.off refined", {0, 0},
+                       {std::begin(kTargets), std::end(kTargets)}, Refine::guarded);
+  const std::string elephant = std::string(PRM_CGAL_MESHES) + "/elephant.off";
+  if (std::filesystem::exists(elephant))
+    expect_clean_streams(prm::read_mesh(elephant), "elephant.off refined", {0, 0}, {{5e-4, 11}, {2e-4, 10}},
+                         Refine::guarded);
 }
 
 }  // namespace

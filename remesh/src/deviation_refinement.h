@@ -57,6 +57,11 @@ struct DeviationRefinementOptions {
   // After the rounds, an inserted vertex whose fan of 3 or 4 triangles can be triangulated again without it, within
   // the bound, is removed (h22max8: needs thin_sheets and dense_probes).
   bool prune = true;
+  // No change (a move, a split, a flip, a pruned fan) makes more of its triangles face away from the input
+  // (input_facing.h: the normal against that of the input's face closest to the centroid) than those it replaces did;
+  // a place that would tries the next one (a part of the way, an edge split, the descent), else the site is left
+  // (issue 22 item 3: the refinement folded triangles, issue 17's `turned`).
+  bool facing_guard = true;
 };
 
 struct DeviationRefinementStats {
@@ -66,6 +71,9 @@ struct DeviationRefinementStats {
   size_t moved = 0;     // vertex moves: irregular ones (a rim), lattice ones along their axis (their height)
   size_t rounds = 0;
   size_t pruned = 0;    // inserted vertices removed again (DeviationRefinementOptions::prune; `inserted` is net)
+  size_t facing_refused = 0;  // places (moves, splits, flips, fans) refused as facing away from the input
+  size_t facing_skipped = 0;  // deviations left or moved no further after such a refusal (part of `refused`, or a
+                              // mesh vertex left where it was)
 };
 
 // prm: a merged PRM with its labels (the new vertices and triangles are labelled; all triangles are relabelled).
@@ -86,7 +94,8 @@ size_t prune_inserted_vertices(PrmMesh& prm, size_t first_inserted, const Mesh& 
 // rounding them to prm.frame's step whose triangles and the vertex itself stray least from the input (the stream
 // holds rounded coordinates; a lattice coordinate stays). Returns how many were put elsewhere than their nearest rounding.
 // face_deviation2: refine_deviations' figures for prm's faces (null or another size: measured here).
+// facing_guard: no rounding that makes more of a vertex's triangles face away from the input (input_facing.h).
 size_t round_towards_input(PrmMesh& prm, const Mesh& input, const AabbTree& input_tree, double bound,
-                           const std::vector<double>* face_deviation2 = nullptr);
+                           const std::vector<double>* face_deviation2 = nullptr, bool facing_guard = true);
 
 }  // namespace prm::remesh

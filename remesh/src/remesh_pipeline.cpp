@@ -95,6 +95,7 @@ RemeshResult remesh(const Mesh& input, const RemeshOptions& options, const Error
   if (refine_last) ro.max_deviation = 0;
   ro.refine_thin_sheets = options.refine_thin_sheets;
   ro.refine_notches = options.refine_notches;
+  ro.refine_facing_guard = options.refine_facing_guard;
   const int64_t coarsest = int64_t{1} << options.bits;  // a grid wider than the bounding box
   auto grid_of = [&](double size) {
     const double steps = size / ro.frame.step;

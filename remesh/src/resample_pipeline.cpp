@@ -74,15 +74,18 @@ void finish(PrmMesh& prm, const Mesh& input, const AabbTree& tree, const Resampl
     dro.thin_sheets = options.refine_thin_sheets;
     dro.lattice_moves = dro.lattice_reach = dro.dense_probes = dro.normal_reach = dro.stray_check =
         dro.descent_placement = dro.all_input_faces = options.refine_notches;
+    dro.facing_guard = options.refine_notches && options.refine_facing_guard;
     std::vector<double> face_deviation2;
     const DeviationRefinementStats ds = refine_deviations(prm, input, tree, dro, &face_deviation2);
     st.deviation_inserts = ds.inserted;
     st.deviation_refused = ds.refused;
     st.deviation_moves = ds.moved;
+    st.deviation_facing_skipped = ds.facing_skipped;
     // The rounding to the stream's step, chosen near the bound (--local-refinement only: --max-error keeps the first
     // thin-sheet refinement, bench/README.md "Worst-case error").
     if (options.refine_notches) {
-      st.deviation_rounded = round_towards_input(prm, input, tree, options.max_deviation, &face_deviation2);
+      st.deviation_rounded = round_towards_input(prm, input, tree, options.max_deviation, &face_deviation2,
+                                                 options.refine_facing_guard);
     }
     st.vertices = prm.mesh.positions.size();
     st.faces = prm.mesh.triangles.size();

@@ -125,10 +125,10 @@ void add_pack_command(CLI::App& root) {
                 "Without --max-error: insert or move vertices where the remeshed surface strays more than " +
                     std::to_string(pipeline::kLocalRefineShare * pipeline::kDefaultMaxErrorPerTarget).substr(0, 3) +
                     " x --target-error from the input (thin sheets the grid cuts off, lattice vertices off the input; "
-                    "near that bound, the rounding to the step that strays least; bench/README.md 'Worst-case error': the "
-                    "horse's max from 25x to 7.6x the target for +4.0% bytes, venus from 16x to 7.5x for +3.9%, the feline "
-                    "from 19x to 7.4x for +0.9%, bunny_zipper from 14x to 7.5x for +3.3%; opt-in: it turns a few "
-                    "triangles away from the input)");
+                    "near that bound, the rounding to the step that strays least; no step, rounding or heights' lambda "
+                    "turns a triangle away from the input; bench/README.md 'Worst-case error': the horse's max from 25x "
+                    "to 9.9x the target for +4.6% bytes, venus from 16x to 10.5x for +6.1%, the feline from 19x to 8.2x "
+                    "for +1.3%, bunny_zipper from 14x to 7.6x for +3.0%; opt-in: not yet within 8x everywhere)");
   cmd->add_flag("--adaptive", opt->adaptive,
                 "A grid size per relief (format 1.5, spec §8.4.2): each relief's grid chosen by equal slope (the same "
                 "marginal bytes per unit of squared error in every relief) from its error measured on two uniform "
@@ -352,6 +352,7 @@ void add_pack_command(CLI::App& root) {
         j["refined_vertices"] = s.deviation_inserts;
         j["refined_moves"] = s.deviation_moves;
         j["refined_rounded"] = s.deviation_rounded;
+        j["refined_facing_skips"] = s.deviation_facing_skipped;
         j["height_lambda"] = r.codec_options.height_lambda;
         j["height_sweeps"] = r.codec_options.height_lambda > 0 ? r.codec_options.height_sweeps : 0;
       }

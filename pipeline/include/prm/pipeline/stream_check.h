@@ -4,6 +4,7 @@
 
 #include <cstddef>
 
+#include "prm/aabb_tree.h"
 #include "prm/codec.h"
 #include "prm/mesh.h"
 
@@ -18,6 +19,8 @@ struct StreamCheck {
 
 // reference: the surface the stream was made from (the repaired input for `pack`), or null.
 StreamCheck check_decoded(const codec::DecodedMesh& decoded, const Mesh* reference);
+// StreamCheck::turned of mesh m against reference (whose tree is reference_tree).
+size_t count_turned(const Mesh& m, const Mesh& reference, const AabbTree& reference_tree);
 
 // What `pack` remeshes: the mesh itself when the remesher takes it as it is, otherwise its repair (prm::InputError
 // when it cannot be repaired).

@@ -52,6 +52,9 @@ struct ResampleOptions {
   double max_deviation = 0;
   bool refine_thin_sheets = true;  // the refinement's thin-sheet steps (DeviationRefinementOptions::thin_sheets)
   bool refine_notches = true;  // its notch steps (DeviationRefinementOptions::lattice_moves .. stray_check)
+  // With the notch steps: no step nor rounding makes a triangle face away from the input
+  // (DeviationRefinementOptions::facing_guard; round_towards_input's facing_guard).
+  bool refine_facing_guard = true;
   // The AABB tree of the layout's input mesh, if the caller has one (null: built for each call; at 2M input
   // vertices that is 4.3M triangles, 470 MB and seconds a grid round).
   const AabbTree* input_tree = nullptr;
@@ -73,6 +76,7 @@ struct ResampleStats {
   size_t deviation_inserts = 0, deviation_refused = 0;    // local refinement (deviation_refinement.h)
   size_t deviation_moves = 0;                             // its rim moves (irregular vertices moved, none inserted)
   size_t deviation_rounded = 0;  // then vertices put on another rounding than the nearest (round_towards_input)
+  size_t deviation_facing_skipped = 0;  // deviations left since their places faced away from the input
   // Quantization (quantized_separation.h): faces that lost their area and vertices that shared a position when
   // rounded to the frame, the vertices moved so that none does, and what is left (faces and vertices).
   size_t quantized_degenerate = 0, quantized_rounding_turned = 0, quantized_coincident = 0, quantized_moves = 0,
