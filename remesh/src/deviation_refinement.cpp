@@ -242,10 +242,9 @@ bool split_in_three(Mesh& m, std::vector<uint8_t>& touched, const StrayCheck& ch
   const Tri t = m.triangles[f];
   const Vec3 old_normal = face_normal(m, t);
   const std::vector<Tri> tris = {{t[0], t[1], nv}, {t[1], t[2], nv}, {t[2], t[0], nv}};
-  const size_t old_away = check.facing.away(m, {t});
   for (double share : kShares) {
     m.positions[nv] = from + share * (to - from);
-    if (!faces_agree(m, old_normal, tris) || !check.facing.keeps(m, old_away, tris) || !check.passes(m, {t}, tris))
+    if (!faces_agree(m, old_normal, tris) || !check.facing.keeps(m, tris) || !check.passes(m, {t}, tris))
       continue;
     commit_split_in_three(m, touched, f, tris);
     return true;
@@ -296,7 +295,6 @@ bool insert(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std
     const double s = std::clamp(dot(d.wanted - pa, pb - pa) / std::max(norm2(pb - pa), 1e-300), 0.1, 0.9);
     const Vec3 on_edge = pa + s * (pb - pa);
     const Vec3 normal_u = face_normal(m, u);
-    const size_t old_away = check.facing.away(m, {t, u});
     // The wanted point, then (a straying point) the input along the pair's normal below the point on the edge.
     std::vector<Vec3> targets = {d.wanted};
     if (along_normal)
@@ -305,7 +303,7 @@ bool insert(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std
       for (double share : kShares) {
         m.positions[nv] = on_edge + share * (target - on_edge);
         if (!faces_agree(m, old_normal, mine) || !faces_agree(m, normal_u, theirs) ||
-            !check.facing.keeps(m, old_away, {mine[0], mine[1], theirs[0], theirs[1]}) ||
+            !check.facing.keeps(m, {mine[0], mine[1], theirs[0], theirs[1]}) ||
             !check.passes(m, {t, u}, {mine[0], mine[1], theirs[0], theirs[1]}))
           continue;
         commit_edge_split(m, touched, f, static_cast<uint32_t>(g), mine, theirs);
@@ -317,10 +315,10 @@ bool insert(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std
   if (descent && check.input_tree != nullptr) {
     const double step = std::sqrt(d.distance2);
     const auto cost = [&](const std::vector<Tri>& tris, const std::vector<std::pair<Vec3, const std::vector<Tri>*>>&
-                                                            normals, size_t old_away) {
+                                                            normals) {
       for (const auto& [normal, group] : normals)
         if (!faces_agree(m, normal, *group)) return std::numeric_limits<double>::infinity();
-      if (check.facing.away(m, tris) > old_away) return std::numeric_limits<double>::infinity();
+      if (check.facing.away(m, tris) > 0) return std::numeric_limits<double>::infinity();
       // The probes leave the vertices out: the new vertex's own distance counts too.
       double worst = std::max(probe_deviation2(m, tris, *check.input_tree, check.bound, check.dense),
                               check.input_tree->closest(m.positions[nv]).distance2);
@@ -336,9 +334,8 @@ bool insert(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std
     const size_t k = static_cast<size_t>(corners[0]);
     if (bc[k] > kEdgeBarycentric) {
       const std::vector<Tri> tris = {{t[0], t[1], nv}, {t[1], t[2], nv}, {t[2], t[0], nv}};
-      const size_t old_away = check.facing.away(m, {t});
       if (place_by_descent(m, nv, d.at, step, check.bound * check.bound,
-                           [&] { return cost(tris, {{old_normal, &tris}}, old_away); })) {
+                           [&] { return cost(tris, {{old_normal, &tris}}); })) {
         commit_split_in_three(m, touched, f, tris);
         return true;
       }
@@ -354,9 +351,8 @@ bool insert(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std
         const std::vector<Tri> all = {mine[0], mine[1], theirs[0], theirs[1]};
         const Vec3 pa = m.positions[a], pb = m.positions[b], normal_u = face_normal(m, u);
         const double s = std::clamp(dot(d.at - pa, pb - pa) / std::max(norm2(pb - pa), 1e-300), 0.1, 0.9);
-        const size_t old_away = check.facing.away(m, {t, u});
         if (place_by_descent(m, nv, pa + s * (pb - pa), step, check.bound * check.bound,
-                             [&] { return cost(all, {{old_normal, &mine}, {normal_u, &theirs}}, old_away); })) {
+                             [&] { return cost(all, {{old_normal, &mine}, {normal_u, &theirs}}); })) {
           commit_edge_split(m, touched, f, static_cast<uint32_t>(g), mine, theirs);
           return true;
         }
@@ -423,13 +419,12 @@ bool flip_straying_edge(Mesh& m, const std::vector<std::vector<uint32_t>>& verte
   }
   const Vec3 pair_normal = face_normal(m, t) + face_normal(m, u);
   const Tri old_f = t, old_g = u;
-  const size_t old_away = facing.away(m, {t, u});
   const double before =
       probe_deviation2(m, {m.triangles[f], m.triangles[static_cast<size_t>(g)]}, input_tree, bound, dense);
   m.triangles[f] = {c, a, e};
   m.triangles[static_cast<size_t>(g)] = {c, e, b};
   if (faces_agree(m, pair_normal, {m.triangles[f], m.triangles[static_cast<size_t>(g)]}) &&
-      facing.keeps(m, old_away, {m.triangles[f], m.triangles[static_cast<size_t>(g)]}) &&
+      facing.keeps(m, {m.triangles[f], m.triangles[static_cast<size_t>(g)]}) &&
       probe_deviation2(m, {m.triangles[f], m.triangles[static_cast<size_t>(g)]}, input_tree, bound, dense) < before) {
     touched[f] = 1;
     touched[static_cast<size_t>(g)] = 1;
@@ -472,7 +467,6 @@ bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_f
     std::vector<Vec3> normals;
     for (uint32_t f : faces) normals.push_back(face_normal(m, m.triangles[f]));
     const std::vector<Tri> tris = triangles_of(m, faces);
-    const size_t old_away = facing.away(m, tris);
     const Vec3 from = m.positions[v];
     // A missed input vertex: the vertex goes to it. A straying mesh point: the vertex moves as the point should, and
     // its faces must stray less than before.
@@ -509,7 +503,7 @@ bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_f
         ok = dot(n, normals[k]) > 1e-3 * norm(n) * norm(normals[k]);
       }
       if (ok && lattice && !mesh_point) ok = missed2() < 0.81 * missed_before2;
-      if (ok && facing.keeps(m, old_away, tris) && deviation2() <= allowed2) {
+      if (ok && facing.keeps(m, tris) && deviation2() <= allowed2) {
         for (uint32_t f : faces) touched[f] = 1;
         ++moved[v];
         return true;
@@ -535,11 +529,10 @@ bool descend_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_fa
   const std::vector<Tri> tris = triangles_of(m, faces);
   std::vector<Vec3> normals;
   for (const Tri& t : tris) normals.push_back(face_normal(m, t));
-  const size_t old_away = facing.away(m, tris);
   const auto cost = [&] {
     for (size_t k = 0; k < tris.size(); ++k)
       if (!faces_agree(m, normals[k], {tris[k]})) return std::numeric_limits<double>::infinity();
-    if (facing.away(m, tris) > old_away) return std::numeric_limits<double>::infinity();
+    if (facing.away(m, tris) > 0) return std::numeric_limits<double>::infinity();
     return std::max(probe_deviation2(m, tris, input_tree, options.max_deviation, options.dense_probes),
                     input_tree.closest(m.positions[v]).distance2);
   };
@@ -714,7 +707,6 @@ size_t prune_inserted(Mesh& m, const QuantFrame& frame, size_t first_inserted, c
     }
     Vec3 old_normal = {0, 0, 0};
     for (uint32_t f : faces) old_normal = old_normal + face_normal(m, m.triangles[f]);
-    const size_t old_away = facing.away(m, triangles_of(m, faces));
     // The input near the fan: its attached vertices, and the input triangles around them.
     std::vector<uint32_t> near_vertices, near_faces;
     for (uint32_t f : faces) near_vertices.insert(near_vertices.end(), attached[f].begin(), attached[f].end());
@@ -768,7 +760,7 @@ size_t prune_inserted(Mesh& m, const QuantFrame& frame, size_t first_inserted, c
     const std::vector<Tri>* best = nullptr;
     double best_worst = bound2;
     for (const std::vector<Tri>& tris : ways) {
-      if (!faces_agree(m, old_normal, tris) || !facing.keeps(m, old_away, tris)) continue;
+      if (!faces_agree(m, old_normal, tris) || !facing.keeps(m, tris)) continue;
       const double worst = worst_of(tris, best_worst);
       if (worst <= best_worst && rounded_worst_of(tris, rounded_limit) <= rounded_limit)
         best = &tris, best_worst = worst;
@@ -1137,10 +1129,6 @@ size_t round_towards_input(PrmMesh& prm, const Mesh& input, const AabbTree& inpu
   // own place back at the end. (With the neighbours not weighed at all at their rounding too, venus went from 7.1x to
   // 8.4x the target.)
   const std::vector<Vec3> unrounded = m.positions;
-  // facing_guard: how many of each vertex's triangles face away from the input unrounded (no way may add to that).
-  std::vector<size_t> unrounded_away(m.positions.size(), 0);
-  if (facing.input != nullptr)
-    for (const auto& entry : order) unrounded_away[entry.second] = facing.away(m, triangles_of(m, vertex_faces[entry.second]));
   std::vector<uint8_t> put(m.positions.size(), 0);
   size_t changed = 0;
   for (const auto& entry : order) {
@@ -1153,7 +1141,6 @@ size_t round_towards_input(PrmMesh& prm, const Mesh& input, const AabbTree& inpu
     for (const Tri& t : tris)
       normals.push_back(triangle_normal_area2(unrounded[t[0]], unrounded[t[1]], unrounded[t[2]]));
     const Vec3 x = unrounded[v];
-    const size_t old_away = unrounded_away[v];
     // The worst of the triangles' probes and the attached input points with v at p; infinite when one turns over
     // (or faces away from the input, facing_guard).
     auto cost = [&](const Vec3& p) {
@@ -1162,7 +1149,7 @@ size_t round_towards_input(PrmMesh& prm, const Mesh& input, const AabbTree& inpu
         const Vec3 n = face_normal(m, tris[k]);
         if (!(dot(n, normals[k]) > 1e-3 * norm(n) * norm(normals[k]))) return std::numeric_limits<double>::infinity();
       }
-      if (facing.away(m, tris) > old_away) return std::numeric_limits<double>::infinity();
+      if (facing.away(m, tris) > 0) return std::numeric_limits<double>::infinity();
       double worst = std::max(probe_deviation2(m, tris, input_tree, bound, true), input_tree.closest(p).distance2);
       for (uint32_t u : points) {
         double best = std::numeric_limits<double>::infinity();
@@ -1213,7 +1200,7 @@ size_t round_towards_input(PrmMesh& prm, const Mesh& input, const AabbTree& inpu
     again = false;
     for (const auto& entry : order) {
       const uint32_t v = entry.second;
-      if (!put[v] || facing.away(m, triangles_of(m, vertex_faces[v])) <= unrounded_away[v]) continue;
+      if (!put[v] || facing.away(m, triangles_of(m, vertex_faces[v])) == 0) continue;
       m.positions[v] = unrounded[v];
       put[v] = 0;
       --changed;

@@ -57,8 +57,9 @@ struct DeviationRefinementOptions {
   // After the rounds, an inserted vertex whose fan of 3 or 4 triangles can be triangulated again without it, within
   // the bound, is removed (h22max8: needs thin_sheets and dense_probes).
   bool prune = true;
-  // No change (a move, a split, a flip, a pruned fan) makes more of its triangles face away from the input
-  // (input_facing.h: the normal against that of the input's face closest to the centroid) than those it replaces did;
+  // No change (a move, a split, a flip, a pruned fan) makes a triangle that faces away from the input
+  // (input_facing.h: the normal against that of the input's face closest to the centroid, also with the corners at
+  // their nearest rounding to prm.frame's step, or a corner on a point another vertex rounds to);
   // a place that would tries the next one (a part of the way, an edge split, the descent), else the site is left
   // (issue 22 item 3: the refinement folded triangles, issue 17's `turned`).
   bool facing_guard = true;
@@ -94,7 +95,7 @@ size_t prune_inserted_vertices(PrmMesh& prm, size_t first_inserted, const Mesh& 
 // rounding them to prm.frame's step whose triangles and the vertex itself stray least from the input (the stream
 // holds rounded coordinates; a lattice coordinate stays). Returns how many were put elsewhere than their nearest rounding.
 // face_deviation2: refine_deviations' figures for prm's faces (null or another size: measured here).
-// facing_guard: no rounding that makes more of a vertex's triangles face away from the input (input_facing.h).
+// facing_guard: no rounding that leaves one of a vertex's triangles facing away from the input (input_facing.h).
 size_t round_towards_input(PrmMesh& prm, const Mesh& input, const AabbTree& input_tree, double bound,
                            const std::vector<double>* face_deviation2 = nullptr, bool facing_guard = true);
 

@@ -222,6 +222,9 @@ TEST(DeviationRefinement, LongInputTriangleWithItsVerticesOnTheMesh) {
     o.max_deviation = 0.8;
     o.max_insert_share = 1.0;  // of 16 vertices
     o.all_input_faces = all;
+    // The mesh's dip lies on the small square, whose normal is the other way: its triangles face away from the
+    // input by construction, and with the facing guard no new triangle may (hrefine: then nothing is inserted).
+    o.facing_guard = false;
     const DeviationRefinementStats st = refine_deviations(prm, input, tree, o);
     const AabbTree refined(prm.mesh);
     const double middle = std::sqrt(refined.closest(Vec3{0.0, 0.0, 0.0}).distance2);

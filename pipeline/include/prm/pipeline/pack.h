@@ -61,7 +61,7 @@ const char* pack_mode_name(PackMode mode);  // "prm", "general", "auto" (the --m
 // heights: pipeline/src/height_guard.h). With max_error the refinement runs without its notch steps (RemeshOptions::refine_notches), as on
 // main before them.
 // hrefine: with refine_facing_guard (the default) no refinement step, rounding or heights' lambda turns a triangle
-// away from the input; that costs the bound on four of the seven meshes (horse 9.9x, venus 10.5x, feline 8.2x, camel
+// away from the input; that costs the bound on four of the seven meshes (horse 9.9x, venus 10.5x, feline 8.1x, camel
 // 10.8x; bench/README.md "Worst-case error"), so the refinement stays opt-in.
 constexpr double kDefaultMaxErrorPerTarget = 8;
 constexpr double kRefineShare = 0.6;
