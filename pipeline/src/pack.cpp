@@ -229,6 +229,9 @@ PackResult finish_at(const SearchContext& ctx, const PackOptions& options, Remes
   const codec::PrmOptions po = out.codec_options;
   const int bits = out.bits;
   const double step_scale = out.step_scale;
+  // The rounded heights' max (the search's samples, fewer than the check's): over the heights' guard's aim, the guard
+  // below cannot help (its last try is these heights, measured with more samples) and is skipped.
+  const double rounded_max = out.remesh.error.max;
   // EffortPlan::lambda_full_density: the lambda rounds measure at full density, so that the check reuses it.
   const bool lambda_full = ctx.plan.lambda_full_density;
   auto measure = [&](const Mesh& m) {
@@ -378,7 +381,7 @@ PackResult finish_at(const SearchContext& ctx, const PackOptions& options, Remes
     const double aim = kDefaultMaxErrorPerTarget * options.target_error;
     // At most kHeightGuardTries lambdas, then rounding (height_guard.h).
     if (met && options.refine_deviations && !(options.max_error > 0) && options.target_error > 0 &&
-        out.remesh.error.max > aim && out.codec_options.height_lambda > 0)
+        out.remesh.error.max > aim && rounded_max <= aim && out.codec_options.height_lambda > 0)
       height_guard_choice(k, [&](int j) {
         codec::PrmOptions o = out.codec_options;
         o.height_lambda = j >= 0 ? kHeightLambdas[j] : 0;

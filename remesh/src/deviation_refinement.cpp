@@ -19,6 +19,10 @@ namespace {
 // How far from the split edge towards the wanted point a new vertex (or a moved one) may go, tried in this order;
 // part of the way is progress too, and the next round measures what is left.
 constexpr double kShares[] = {1.0, 0.75, 0.5, 0.25};
+// Edge flips a facing repair may make around a new vertex (repair_facing).
+constexpr int kRepairFlips = 4;
+// How many steps (along some axis, rounded) a repaired vertex must keep from each of its neighbours (repaired_insertion).
+constexpr uint32_t kRepairSteps = 3;
 // Rounds of insertions (each measures the deviations of the refined mesh again).
 constexpr size_t kMaxRounds = 12;
 // Rim moves of one vertex, over all rounds (a straying point and a missed vertex could push it back and forth).
@@ -235,17 +239,99 @@ void commit_edge_split(Mesh& m, std::vector<uint8_t>& touched, uint32_t f, uint3
   touched.resize(m.triangles.size(), 1);
 }
 
+// Faces around a new vertex nv (its last corner) that a facing repair may change: tris[i] replaces faces[i] (the rest
+// are appended), and the edge of tris[i] opposite nv was an edge of face origin[i].
+struct FacingPatch {
+  std::vector<Tri> tris;
+  std::vector<uint32_t> origin;
+  std::vector<uint32_t> faces;
+};
+
+// Facing repair (hrefine2): where some of the new vertex nv's triangles face away from the input, the edge opposite nv
+// in such a triangle is flipped with the face across it (untouched, not in the patch, its third corner not yet a
+// neighbour of nv), at most kRepairFlips times, until every triangle faces the input. A flip's two triangles must
+// agree with the two faces it replaces. False when some triangle still faces away.
+bool repair_facing(const Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces,
+                   const std::vector<uint8_t>& touched, const InputFacing& facing, uint32_t nv, FacingPatch& p) {
+  if (facing.input == nullptr) return false;
+  for (int flips = 0; flips <= kRepairFlips; ++flips) {
+    size_t i = 0;
+    while (i < p.tris.size() && facing.faces(m, p.tris[i])) ++i;
+    if (i == p.tris.size()) return flips > 0;
+    if (flips == kRepairFlips) return false;
+    const uint32_t x = p.tris[i][0], y = p.tris[i][1];
+    const int64_t h = other_face(m, vertex_faces, x, y, p.origin[i]);
+    if (h < 0 || touched[static_cast<size_t>(h)] ||
+        std::find(p.faces.begin(), p.faces.end(), static_cast<uint32_t>(h)) != p.faces.end())
+      return false;
+    const Tri& u = m.triangles[static_cast<size_t>(h)];
+    uint32_t z = u[0];
+    for (uint32_t w : u)
+      if (w != x && w != y) z = w;
+    for (const Tri& t : p.tris)
+      if (t[0] == z || t[1] == z) return false;
+    const std::vector<Tri> two = {{x, z, nv}, {z, y, nv}};
+    if (!faces_agree(m, normalized(face_normal(m, p.tris[i])) + normalized(face_normal(m, u)), two)) return false;
+    p.tris[i] = two[0];
+    p.tris.push_back(two[1]);
+    p.origin[i] = static_cast<uint32_t>(h);
+    p.origin.push_back(static_cast<uint32_t>(h));
+    p.faces.push_back(static_cast<uint32_t>(h));
+  }
+  return false;
+}
+
+// A repaired patch into m: p.tris over p.faces, the rest appended; all touched.
+void commit_patch(Mesh& m, std::vector<uint8_t>& touched, const FacingPatch& p) {
+  for (size_t i = 0; i < p.tris.size(); ++i) {
+    if (i < p.faces.size()) {
+      m.triangles[p.faces[i]] = p.tris[i];
+      touched[p.faces[i]] = 1;
+    } else {
+      m.triangles.push_back(p.tris[i]);
+    }
+  }
+  touched.resize(m.triangles.size(), 1);
+}
+
+// The new triangles (and the faces they replace) with the new vertex nv at its place: repaired (repair_facing) when
+// some face away from the input, then kept when they face it and pass the check. False: m unchanged.
+bool repaired_insertion(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std::vector<uint8_t>& touched,
+                        const StrayCheck& check, uint32_t nv, FacingPatch p) {
+  if (!repair_facing(m, vertex_faces, touched, check.facing, nv, p)) {
+    ++check.facing.refusals;
+    return false;
+  }
+  if (!check.facing.keeps(m, p.tris)) return false;
+  // Within kRepairSteps of a neighbour once rounded, the separation may move one of them and turn a triangle (venus:
+  // a knife edge repaired five times over, one decoded face away).
+  if (check.facing.frame != nullptr)
+    for (const Tri& t : p.tris)
+      if (check.facing.steps_apart(m.positions[nv], m.positions[t[0]]) < kRepairSteps ||
+          check.facing.steps_apart(m.positions[nv], m.positions[t[1]]) < kRepairSteps)
+        return false;
+  std::vector<Tri> old;
+  for (uint32_t f : p.faces) old.push_back(m.triangles[f]);
+  if (!check.passes(m, old, p.tris)) return false;
+  commit_patch(m, touched, p);
+  return true;
+}
+
 // Splits face f in three at the new vertex nv, placed at `to` or, where that turns a triangle over, part of the way
 // there from `from` (kShares). False (f unchanged) when every place turns one over or fails the check.
-bool split_in_three(Mesh& m, std::vector<uint8_t>& touched, const StrayCheck& check, uint32_t f, uint32_t nv,
-                    const Vec3& from, const Vec3& to) {
+bool split_in_three(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std::vector<uint8_t>& touched,
+                    const StrayCheck& check, uint32_t f, uint32_t nv, const Vec3& from, const Vec3& to) {
   const Tri t = m.triangles[f];
   const Vec3 old_normal = face_normal(m, t);
   const std::vector<Tri> tris = {{t[0], t[1], nv}, {t[1], t[2], nv}, {t[2], t[0], nv}};
   for (double share : kShares) {
     m.positions[nv] = from + share * (to - from);
-    if (!faces_agree(m, old_normal, tris) || !check.facing.keeps(m, tris) || !check.passes(m, {t}, tris))
+    if (!faces_agree(m, old_normal, tris)) continue;
+    if (check.facing.away(m, tris) > 0) {
+      if (repaired_insertion(m, vertex_faces, touched, check, nv, {tris, {f, f, f}, {f}})) return true;
       continue;
+    }
+    if (!check.facing.keeps(m, tris) || !check.passes(m, {t}, tris)) continue;
     commit_split_in_three(m, touched, f, tris);
     return true;
   }
@@ -270,9 +356,9 @@ bool insert(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std
             [&](int x, int y) { return bc[static_cast<size_t>(x)] < bc[static_cast<size_t>(y)]; });
   if (bc[static_cast<size_t>(corners[0])] > kEdgeBarycentric) {
     // Inside the triangle: split it in three.
-    if (split_in_three(m, touched, check, f, nv, d.at, d.wanted)) return true;
+    if (split_in_three(m, vertex_faces, touched, check, f, nv, d.at, d.wanted)) return true;
     if (along_normal &&
-        split_in_three(m, touched, check, f, nv, d.at, normal_reach(input_tree, d.at, normalized(old_normal))))
+        split_in_three(m, vertex_faces, touched, check, f, nv, d.at, normal_reach(input_tree, d.at, normalized(old_normal))))
       return true;
   }
   // Near an edge (or where the split in three turns a triangle over): split an edge and both its triangles. The new
@@ -302,8 +388,15 @@ bool insert(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std
     for (const Vec3& target : targets)
       for (double share : kShares) {
         m.positions[nv] = on_edge + share * (target - on_edge);
-        if (!faces_agree(m, old_normal, mine) || !faces_agree(m, normal_u, theirs) ||
-            !check.facing.keeps(m, {mine[0], mine[1], theirs[0], theirs[1]}) ||
+        if (!faces_agree(m, old_normal, mine) || !faces_agree(m, normal_u, theirs)) continue;
+        if (check.facing.away(m, {mine[0], mine[1], theirs[0], theirs[1]}) > 0) {
+          const uint32_t gf = static_cast<uint32_t>(g);
+          if (repaired_insertion(m, vertex_faces, touched, check, nv,
+                                 {{{c, a, nv}, {b, c, nv}, {e, b, nv}, {a, e, nv}}, {f, f, gf, gf}, {f, gf}}))
+            return true;
+          continue;
+        }
+        if (!check.facing.keeps(m, {mine[0], mine[1], theirs[0], theirs[1]}) ||
             !check.passes(m, {t, u}, {mine[0], mine[1], theirs[0], theirs[1]}))
           continue;
         commit_edge_split(m, touched, f, static_cast<uint32_t>(g), mine, theirs);
@@ -387,7 +480,7 @@ bool insert_on_facing_face(Mesh& m, const std::vector<std::vector<uint32_t>>& ve
   for (const auto& [cosine, h] : candidates) {
     const Tri& t = m.triangles[h];
     const Vec3 centroid = (1.0 / 3) * (m.positions[t[0]] + m.positions[t[1]] + m.positions[t[2]]);
-    if (split_in_three(m, touched, check, h, nv, centroid, d.wanted)) return true;
+    if (split_in_three(m, vertex_faces, touched, check, h, nv, centroid, d.wanted)) return true;
   }
   m.positions.pop_back();
   return false;

@@ -6,6 +6,7 @@
 // leaves facing away.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <unordered_map>
@@ -82,6 +83,15 @@ struct InputFacing {
     for (int a = 0; a < 3; ++a)
       r[static_cast<size_t>(a)] = frame->to_real(static_cast<double>(frame->quantize(p[static_cast<size_t>(a)], a)), a);
     return r;
+  }
+  // How many steps apart p and q round to, along the axis where they are farthest (needs the frame).
+  uint32_t steps_apart(const Vec3& p, const Vec3& q) const {
+    uint32_t n = 0;
+    for (int a = 0; a < 3; ++a) {
+      const uint32_t qp = frame->quantize(p[static_cast<size_t>(a)], a), qq = frame->quantize(q[static_cast<size_t>(a)], a);
+      n = std::max(n, qp > qq ? qp - qq : qq - qp);
+    }
+    return n;
   }
   bool faces(const Mesh& m, const Tri& t) const {
     if (input == nullptr) return true;
