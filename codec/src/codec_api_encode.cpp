@@ -143,7 +143,10 @@ Status encode_impl(const uint32_t* q, size_t nv, const uint32_t* tris, size_t nt
       for (uint32_t v = 0; v < mesh.num_vertices; ++v) {
         const uint32_t in = plan.vertex_input[v];
         if (in == UINT32_MAX) continue;
-        for (int k = 0; k < 3; ++k) exact[3 * size_t{v} + k] = prm->unrounded[3 * size_t{in} + k];
+        // PrmOptions::rounded_heights: no exact height (NaN), so the height stays q's (height_window).
+        const bool held = prm->rounded_heights && prm->rounded_heights[in];
+        for (int k = 0; k < 3; ++k)
+          exact[3 * size_t{v} + k] = held ? std::nan("") : prm->unrounded[3 * size_t{in} + k];
       }
       freedom.exact = &exact;
       freedom.tolerance = prm->height_tolerance;

@@ -23,7 +23,8 @@ struct LpModels;
 // B.1 The heights a vertex may take: the integers within `tolerance` of the exact height, inside the bounding box
 // and never on its faces (a height on a face stays there, so the box stays tight), always holding the rounded height
 // `given`. `movable`: the vertex is in regular triangles of one axis pair only (otherwise its height is a lattice
-// coordinate elsewhere). Not free: the height stays `given`.
+// coordinate elsewhere). Not free: the height stays `given`; so does one without an exact height (NaN: the caller's
+// PrmOptions::rounded_heights).
 struct HeightWindow {
   int64_t lo = 0, hi = 0;
   double exact = 0;  // in quantization steps
@@ -33,7 +34,7 @@ inline HeightWindow height_window(int64_t given, double exact, double tolerance,
                                   bool movable) {
   HeightWindow w;
   w.exact = exact;
-  w.free = movable && given > box_lo && given < box_hi;
+  w.free = movable && !std::isnan(exact) && given > box_lo && given < box_hi;
   w.lo = w.hi = given;
   if (!w.free) return w;
   w.lo = std::min(given, std::max(box_lo + 1, static_cast<int64_t>(std::ceil(exact - tolerance))));

@@ -249,6 +249,42 @@ TEST(PrmStream, HeightFreedomStaysWithinTheTolerance) {
   }
 }
 
+// PrmOptions::rounded_heights (hrefine3): the vertices it marks keep their rounded heights, the others may still
+// move; all marked, the stream is the lossless one.
+TEST(PrmStream, RoundedHeightsStayRounded) {
+  const QMesh m = pillow(40, 0);
+  const std::vector<double> unrounded = unrounded_near(m, 7);
+  PrmOptions o;
+  o.grid = 8;
+  const auto base = encode_prm(m.q.data(), m.nv(), m.tris.data(), m.nt(), unit_frame(), o);
+  ASSERT_TRUE(base.ok());
+  o.height_tolerance = 1.5;
+  o.height_lambda = 1.0;
+  o.unrounded = unrounded.data();
+  std::vector<uint8_t> held(m.nv(), 0);
+  for (size_t v = 0; v < held.size(); v += 2) held[v] = 1;
+  o.rounded_heights = held.data();
+  EncodeReport rep;
+  const auto enc = encode_prm(m.q.data(), m.nv(), m.tris.data(), m.nt(), unit_frame(), o, &rep);
+  ASSERT_TRUE(enc.ok()) << enc.status.message;
+  const auto dec = decode(enc.value.data(), enc.value.size());
+  ASSERT_TRUE(dec.ok()) << dec.status.message;
+  size_t moved = 0;
+  for (size_t k = 0; k < dec.value.num_vertices(); ++k) {
+    const size_t in = rep.vertex_order[k];
+    for (int a = 0; a < 3; ++a) {
+      const bool differs = dec.value.quantized[3 * k + a] != m.q[3 * in + a];
+      if (held[in]) EXPECT_FALSE(differs) << in;
+      moved += differs;
+    }
+  }
+  EXPECT_GT(moved, 0u);
+  std::fill(held.begin(), held.end(), uint8_t{1});
+  const auto all = encode_prm(m.q.data(), m.nv(), m.tris.data(), m.nt(), unit_frame(), o);
+  ASSERT_TRUE(all.ok());
+  EXPECT_EQ(all.value, base.value);
+}
+
 // PrmOptions::height_sweeps (spec Appendix B.2): the heights chosen one by one, refined together, give a lower
 // rate-distortion objective (squared distance to the unrounded values plus lambda times the stream's bits) than the
 // one-by-one choice, on the same PRM and at the same lambda; both streams decode.

@@ -8,6 +8,11 @@ namespace prm::pipeline {
 // Lambdas tried below the chosen one before the rounded heights (h22max6: uncapped, up to 16 tries, about 4 s CPU on
 // the horse when none met the aim).
 constexpr int kHeightGuardTries = 4;
+// The guard is skipped when the rounded heights' max, the search's sparser estimate, passes the aim by more than
+// this factor (they are the guard's last try, so nothing could help); within it, they are measured at full density
+// first. That estimate can be over the full-density max: the camel's rounded heights, 1.69e-3 of the diagonal
+// sparse, 1.50e-3 at full density (8x: 1.6e-3; hrefine3).
+constexpr double kHeightGuardSparseMargin = 1.1;
 // height_guard_choice: no lambda met both.
 constexpr int kHeightGuardNone = -2;
 

@@ -18,14 +18,19 @@ StreamCheck check_decoded(const codec::DecodedMesh& decoded, const Mesh* referen
 }
 
 size_t count_turned(const Mesh& m, const Mesh& reference, const AabbTree& reference_tree) {
-  size_t turned = 0;
-  for (const Tri& t : m.triangles) {
+  return turned_triangles(m, reference, reference_tree).size();
+}
+
+std::vector<size_t> turned_triangles(const Mesh& m, const Mesh& reference, const AabbTree& reference_tree) {
+  std::vector<size_t> turned;
+  for (size_t i = 0; i < m.triangles.size(); ++i) {
+    const Tri& t = m.triangles[i];
     const Vec3 &a = m.positions[t[0]], &b = m.positions[t[1]], &d = m.positions[t[2]];
     const auto hit = reference_tree.closest((a + b + d) * (1.0 / 3.0));
     const Tri& s = reference.triangles[hit.face];
     const Vec3 sn = triangle_normal_area2(reference.positions[s[0]], reference.positions[s[1]],
                                           reference.positions[s[2]]);
-    turned += dot(triangle_normal_area2(a, b, d), sn) <= 0;
+    if (dot(triangle_normal_area2(a, b, d), sn) <= 0) turned.push_back(i);
   }
   return turned;
 }

@@ -195,6 +195,9 @@ struct PrmOptions {
   double height_tolerance = 0;
   double height_lambda = 0;
   const double* unrounded = nullptr;
+  // With that freedom, 1 per input vertex (optional): a nonzero entry keeps that vertex's heights rounded (q). The
+  // caller's mask of places where the chosen heights would do harm (pipeline: triangles turned from the input).
+  const uint8_t* rounded_heights = nullptr;
   // With that freedom, the heights chosen one by one are then refined together by this many sweeps of coordinate
   // descent, in which a height also weighs the residuals of the later heights it predicts (spec Appendix B.2),
   // 0..16; 0: each height alone, in coding order.

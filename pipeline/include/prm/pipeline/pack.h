@@ -215,7 +215,7 @@ struct PackResult {
   // filled the holes instead, with a note in repair.notes saying so.
   bool boundary_fallback = false;
   int bits = 12;                // the stream's quantization
-  codec::PrmOptions codec_options;  // what the stream was encoded with (height_lambda; without `unrounded`)
+  codec::PrmOptions codec_options;  // what the stream was encoded with (height_lambda; without `unrounded`, `rounded_heights`)
   double step_scale = 1;        // the stream's step in units of 2^-bits of the extent
   struct Trial {
     int bits = 12;

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <vector>
 
 #include "prm/aabb_tree.h"
 #include "prm/codec.h"
@@ -21,6 +22,8 @@ struct StreamCheck {
 StreamCheck check_decoded(const codec::DecodedMesh& decoded, const Mesh* reference);
 // StreamCheck::turned of mesh m against reference (whose tree is reference_tree).
 size_t count_turned(const Mesh& m, const Mesh& reference, const AabbTree& reference_tree);
+// The triangles of m that count_turned counts, in m's order.
+std::vector<size_t> turned_triangles(const Mesh& m, const Mesh& reference, const AabbTree& reference_tree);
 
 // What `pack` remeshes: the mesh itself when the remesher takes it as it is, otherwise its repair (prm::InputError
 // when it cannot be repaired).
