@@ -4,6 +4,7 @@
 #include "prm/mesh_repair.h"
 #include "prm/mesh_validate.h"
 #include "prm/pipeline/codec_bridge.h"
+#include "prm/surface_facing.h"
 #include "prm/vec3.h"
 
 namespace prm::pipeline {
@@ -25,12 +26,8 @@ std::vector<size_t> turned_triangles(const Mesh& m, const Mesh& reference, const
   std::vector<size_t> turned;
   for (size_t i = 0; i < m.triangles.size(); ++i) {
     const Tri& t = m.triangles[i];
-    const Vec3 &a = m.positions[t[0]], &b = m.positions[t[1]], &d = m.positions[t[2]];
-    const auto hit = reference_tree.closest((a + b + d) * (1.0 / 3.0));
-    const Tri& s = reference.triangles[hit.face];
-    const Vec3 sn = triangle_normal_area2(reference.positions[s[0]], reference.positions[s[1]],
-                                          reference.positions[s[2]]);
-    if (dot(triangle_normal_area2(a, b, d), sn) <= 0) turned.push_back(i);
+    if (!faces_surface(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]], reference, reference_tree))
+      turned.push_back(i);
   }
   return turned;
 }

@@ -16,6 +16,7 @@
 #include <cmath>
 #include <vector>
 
+#include "prm/surface_facing.h"
 #include "prm/vec3.h"
 
 namespace prm::remesh {
@@ -57,10 +58,7 @@ HeightFitStats fit_heights(PrmMesh& prm, const Mesh& input, const AabbTree& tree
     const Tri& t = m.triangles[f];
     const Vec3 n2 = triangle_normal_area2(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]);
     if (!(norm2(n2) > 0)) return true;
-    const auto hit = tree.closest((m.positions[t[0]] + m.positions[t[1]] + m.positions[t[2]]) * (1.0 / 3.0));
-    if (!hit.found()) return false;
-    const Tri& s = input.triangles[hit.face];
-    return dot(n2, triangle_normal_area2(input.positions[s[0]], input.positions[s[1]], input.positions[s[2]])) <= 0;
+    return !faces_surface(n2, (m.positions[t[0]] + m.positions[t[1]] + m.positions[t[2]]) * (1.0 / 3.0), input, tree);
   };
   std::vector<uint8_t> was_flipped(nf);
   tbb::parallel_for(size_t{0}, nf, [&](size_t f) { was_flipped[f] = flipped(static_cast<uint32_t>(f)); });

@@ -15,6 +15,7 @@
 #include "prm/aabb_tree.h"
 #include "prm/lattice.h"
 #include "prm/mesh.h"
+#include "prm/surface_facing.h"
 #include "prm/vec3.h"
 
 namespace prm::remesh {
@@ -70,14 +71,7 @@ struct InputFacing {
     return n > (v < cell_at_index.size() && cell_at_index[v] == c ? 1u : 0u);
   }
 
-  bool faces(const Vec3& a, const Vec3& b, const Vec3& c) const {
-    const AabbTree::Hit hit = tree->closest((a + b + c) * (1.0 / 3.0));
-    if (!hit.found()) return true;
-    const Tri& s = input->triangles[hit.face];
-    const Vec3 n = triangle_normal_area2(a, b, c);
-    const Vec3 sn = triangle_normal_area2(input->positions[s[0]], input->positions[s[1]], input->positions[s[2]]);
-    return dot(n, sn) > 0;
-  }
+  bool faces(const Vec3& a, const Vec3& b, const Vec3& c) const { return faces_surface(a, b, c, *input, *tree); }
   Vec3 rounded(const Vec3& p) const {
     Vec3 r;
     for (int a = 0; a < 3; ++a)

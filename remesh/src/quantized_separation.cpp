@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "prm/remesh/boundary_polyline.h"
+#include "prm/surface_facing.h"
 #include "prm/vec3.h"
 
 namespace prm::remesh {
@@ -222,9 +223,7 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* i
   // Does a face with corners r (real coordinates) and normal nr face the input's side: the orientation test of the
   // remesher's invariants, against the input's normal at the point nearest its centroid.
   auto faces_input_side = [&](const Vec3 r[3], const Vec3& nr) {
-    const auto hit = tree->closest((r[0] + r[1] + r[2]) * (1.0 / 3.0));
-    const Tri& s = input->triangles[hit.face];
-    return prm::dot(nr, triangle_normal_area2(input->positions[s[0]], input->positions[s[1]], input->positions[s[2]])) > 0;
+    return faces_surface(nr, (r[0] + r[1] + r[2]) * (1.0 / 3.0), *input, *tree);
   };
   auto height_axis_of = [&](size_t v) {
     const int32_t r = prm.vertex_relief[v];
