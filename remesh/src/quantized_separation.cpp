@@ -68,7 +68,8 @@ void remove_collapsed(PrmMesh& prm, const std::vector<uint8_t>& dead_vertex, con
 
 }  // namespace
 
-QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* input, const AabbTree* tree) {
+QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* input, const AabbTree* tree,
+                                                     double move_bound) {
   QuantizedSeparationStats st;
   Mesh& m = prm.mesh;
   const QuantFrame& frame = prm.frame;
@@ -246,6 +247,13 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* i
       if (p[static_cast<size_t>(a)] < 0 || p[static_cast<size_t>(a)] > top) return -1;
     if (at.count(p)) return -1;
     const Vec3 moved = real_position(v, p);
+    // move_bound (--local-refinement): not farther from the input than the bound, unless v already is (hknife: venus's
+    // 178-degree knife edge, where three lattice vertices and a seam vertex round to one point and the seam vertex
+    // went three steps off the fin, 2.10e-3 of the diagonal; an edge collapse or another corner's move mends it).
+    if (move_bound > 0 && use_input && input && tree) {
+      const double d2 = tree->closest(moved).distance2;
+      if (d2 > move_bound * move_bound && d2 > tree->closest(m.positions[v]).distance2) return -1;
+    }
     int fixed = 0;
     for (uint32_t f : around[v]) {
       const Tri& t = m.triangles[f];

@@ -43,7 +43,9 @@ struct QuantizedSeparationStats {
 // one) where every face around it keeps an area and its side; the passes then move other corners first, and
 // collapse edges first whose end off the boundary goes; a boundary vertex they must move goes to the point nearest
 // the polyline; a boundary vertex is never collapsed away.
+// move_bound > 0 (the local refinement's bound, --local-refinement): while the input's side is kept, no move takes a
+// vertex farther than that from the input (unless it already is); the edge collapses and the last pass still may.
 QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* input = nullptr,
-                                                     const AabbTree* tree = nullptr);
+                                                     const AabbTree* tree = nullptr, double move_bound = 0);
 
 }  // namespace prm::remesh

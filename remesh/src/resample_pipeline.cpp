@@ -93,7 +93,8 @@ void finish(PrmMesh& prm, const Mesh& input, const AabbTree& tree, const Resampl
   }
   // Last, since it places vertices exactly on quantization points: the stream must hold this mesh, not one with
   // collapsed triangles.
-  const QuantizedSeparationStats qs = separate_quantized_vertices(prm, &input, &tree);
+  const QuantizedSeparationStats qs = separate_quantized_vertices(
+      prm, &input, &tree, options.max_deviation > 0 && options.refine_notches ? options.max_deviation : 0);
   st.quantized_degenerate = qs.degenerate_faces;
   st.quantized_rounding_turned = qs.rounding_turned;
   st.quantized_coincident = qs.coincident_vertices;
