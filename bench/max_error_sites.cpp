@@ -10,8 +10,9 @@
 // dihedral angle of the input within a grid size: a crease; the PRM's irregular vertices within a grid size: a seam).
 //   refined the remesh's mesh with the local refinement at --refine R (fraction of the diagonal), rounded
 //   refunr  the same before the rounding (what the refinement itself leaves; refunr < R < refined: the rounding)
-// Usage: prm_bench_max_error_sites MESH TARGET_ERROR [K] [--max-error E] [--refine R] [--local-refinement]
-// (--max-error and --local-refinement: the options of the pack whose stream is the "decoded" stage)
+// Usage: prm_bench_max_error_sites MESH TARGET_ERROR [K] [--max-error E] [--refine R] [--[no-]local-refinement]
+// (--max-error and --[no-]local-refinement: the options of the pack whose stream is the "decoded" stage; without
+// them, pack's defaults)
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -89,7 +90,7 @@ double crease_near(const Mesh& m, const std::vector<std::vector<uint32_t>>& vert
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr, "usage: %s MESH TARGET_ERROR [K] [--max-error E] [--refine R] [--local-refinement]\n",
+    std::fprintf(stderr, "usage: %s MESH TARGET_ERROR [K] [--max-error E] [--refine R] [--[no-]local-refinement]\n",
                  argv[0]);
     return 1;
   }
@@ -101,7 +102,8 @@ int main(int argc, char** argv) {
     const std::string a = argv[i];
     if (a == "--max-error" && i + 1 < argc) po.max_error = std::atof(argv[++i]);
     else if (a == "--refine" && i + 1 < argc) refine = std::atof(argv[++i]);
-    else if (a == "--local-refinement") po.refine_deviations = true;
+    else if (a == "--local-refinement") po.local_refinement = prm::pipeline::PackOptions::LocalRefinement::on;
+    else if (a == "--no-local-refinement") po.local_refinement = prm::pipeline::PackOptions::LocalRefinement::off;
     else k = static_cast<size_t>(std::atoi(argv[i]));
   }
   Mesh input = prm::read_mesh(argv[1]);

@@ -144,13 +144,13 @@ Remeshed remesh_at(const SearchContext& ctx, const PackOptions& options, int bit
   // target.
   ro.max_error = kQuantizationMargin * options.max_error;
   ro.refine_error = options.max_error > 0      ? kRefineShare * options.max_error
-                    : options.refine_deviations ? kLocalRefineShare * kDefaultMaxErrorPerTarget * options.target_error
+                    : ctx.plan.local_refinement ? kLocalRefineShare * kDefaultMaxErrorPerTarget * options.target_error
                                                 : 0;
   // The notch steps (DeviationRefinementOptions::lattice_moves .. stray_check) only for --local-refinement: with
   // --max-error the search keeps the first thin-sheet refinement (bench/README.md "Worst-case error", h22thin3).
   ro.refine_notches = !(options.max_error > 0);
   ro.refine_facing_guard = options.refine_facing_guard;
-  ro.refine_last = options.refine_deviations && !(options.max_error > 0);  // issue 21's CPU budget (h22max5)
+  ro.refine_last = ctx.plan.local_refinement && !(options.max_error > 0);  // issue 21's CPU budget (h22max5)
   // The search measures what the decoder will output: the candidate quantized to the stream's frame (its lattice
   // vertices are exact already; the heights and the other vertices round to the nearest step), or, when the
   // encoder may choose the heights, the candidate encoded and decoded.
@@ -247,7 +247,7 @@ PackResult finish_at(const SearchContext& ctx, const PackOptions& options, Remes
   // With the local refinement (no max_error), heights chosen by rate and distortion must not turn a triangle away from
   // the input either (issue 22 item 3; the refinement's small triangles beside lattice vertices: CGAL's elephant at
   // 5e-4, one): a lambda whose stream has more than the rounded heights' is refused like one that misses the target.
-  const bool facing_guard = options.refine_deviations && options.refine_facing_guard && !(options.max_error > 0);
+  const bool facing_guard = ctx.plan.local_refinement && options.refine_facing_guard && !(options.max_error > 0);
   const size_t base_turned = [&] {
     if (!facing_guard) return size_t{0};
     const auto decoded = codec::decode(out.stream.data(), out.stream.size());
@@ -304,7 +304,7 @@ PackResult finish_at(const SearchContext& ctx, const PackOptions& options, Remes
     // --local-refinement (no max_error): a lambda whose max passes the heights' guard's aim (below) is refused too,
     // when the rounded heights' max is within it, so that the guard has less to undo (h22max8: the venus's chosen
     // lambda, 1.65e-3 here already, was measured again at full density and then replaced by the next smaller one).
-    const double guard_aim = options.refine_deviations && !(options.max_error > 0) &&
+    const double guard_aim = ctx.plan.local_refinement && !(options.max_error > 0) &&
                                      out.remesh.error.max <= kDefaultMaxErrorPerTarget * options.target_error
                                  ? kDefaultMaxErrorPerTarget * options.target_error
                                  : 0;
@@ -434,7 +434,7 @@ PackResult finish_at(const SearchContext& ctx, const PackOptions& options, Remes
       keep_options(c.options);
       return true;
     };
-    if (met && options.refine_deviations && !(options.max_error > 0) && options.target_error > 0 &&
+    if (met && ctx.plan.local_refinement && !(options.max_error > 0) && options.target_error > 0 &&
         out.remesh.error.max > aim && rounded_max <= kHeightGuardSparseMargin * aim &&
         out.codec_options.height_lambda > 0) {
       if (rounded_max <= aim) {
@@ -521,6 +521,7 @@ EffortPlan effort_plan(int effort) {
       p.first_grid_gate = 0.9;
       p.lambda_full_density = true;
       p.predicted_heights_only = true;
+      p.local_refinement = false;
       break;
     case 1: p.steps = 1; p.search_samples_per_face = 2; p.lambda_rounds = 3; p.grid_tolerance = 0.1; p.accept_error = 0.85; break;
     case 2: p.steps = 1; p.search_samples_per_face = 4; p.lambda_rounds = 4; p.grid_tolerance = 0.06; p.accept_error = 0.9; break;
@@ -547,6 +548,12 @@ EffortPlan effort_plan(int effort) {
   return p;
 }
 
+bool refines_locally(const PackOptions& options) {
+  using R = PackOptions::LocalRefinement;
+  return options.local_refinement == R::on ||
+         (options.local_refinement == R::automatic && effort_plan(options.effort).local_refinement);
+}
+
 namespace {
 
 // PackMode::prm. input_reference: the input's Metro reference (options.metro_samples), used when no repair is needed;
@@ -555,8 +562,9 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
                     const MeshReport* input_check) {
   auto t0 = std::chrono::steady_clock::now();
   // The effort applies to the search of the step; a given bit depth or step scale is searched as it always was.
-  const EffortPlan plan =
+  EffortPlan plan =
       effort_plan(options.bits > 0 || options.step_scale > 0 ? kMaxEffort : (effort_plan(options.effort), options.effort));
+  plan.local_refinement = refines_locally(options);  // by the effort asked for, also with a bit depth given
   const bool searched = options.target_error > 0 || options.max_error > 0;
   const bool one_attempt = options.bits > 0 || !searched;
   // The step and grid predictions scale with the target: with --max-error alone, the RMS error it allows by default.

@@ -47,9 +47,9 @@ TEST(PackMaxError, LocalRefinementLowersTheWorstCase) {
   const prm::Mesh input = shared_mesh("feline_5k.obj");
   PackOptions o;
   o.target_error = 5e-4;
-  o.refine_deviations = false;
+  o.local_refinement = PackOptions::LocalRefinement::off;
   const prm::pipeline::PackResult before = prm::pipeline::pack(input, o);
-  o.refine_deviations = true;
+  o.local_refinement = PackOptions::LocalRefinement::on;
   const prm::pipeline::PackResult after = prm::pipeline::pack(input, o);
   const prm::DistanceReport db = decoded_distance(input, before), da = decoded_distance(input, after);
   std::printf("feline_5k at 5e-4: without refinement %zu bytes, max %.3e; with %zu bytes, max %.3e (%zu vertices "

@@ -34,7 +34,7 @@ constexpr size_t kNoSide = SIZE_MAX;  // a two-sided sheet: facing away from the
 
 // max_turned: faces the quantization turned away from the input, and decoded triangles facing away from it, allowed
 // at each target (kNoSide: not checked).
-// refine: with the local refinement (PackOptions::refine_deviations), its facing guard on or off.
+// refine: with the local refinement (PackOptions::local_refinement), its facing guard on or off.
 enum class Refine { none, guarded, unguarded };
 void expect_clean_streams(const prm::Mesh& input, const std::string& name, const std::vector<size_t>& max_turned,
                           const std::vector<Target>& targets = {std::begin(kTargets), std::end(kTargets)},
@@ -49,7 +49,8 @@ void expect_clean_streams(const prm::Mesh& input, const std::string& name, const
     o.bits = target.bits;
     o.step_scale = 1;
     o.mode = prm::pipeline::PackMode::prm;  // the remesher's path
-    o.refine_deviations = refine != Refine::none;
+    o.local_refinement = refine != Refine::none ? prm::pipeline::PackOptions::LocalRefinement::on
+                                                : prm::pipeline::PackOptions::LocalRefinement::off;
     o.refine_facing_guard = refine == Refine::guarded;
     const prm::pipeline::PackResult r = prm::pipeline::pack(input, o);
     const auto decoded = prm::codec::decode(r.stream.data(), r.stream.size());

@@ -61,11 +61,11 @@ const char* pack_mode_name(PackMode mode);  // "prm", "general", "auto" (the --m
 // heights: pipeline/src/height_guard.h). With max_error the refinement runs without its notch steps (RemeshOptions::refine_notches), as on
 // main before them.
 // hrefine: with refine_facing_guard (the default) no refinement step, rounding or heights' lambda turns a triangle
-// away from the input; that costs the bound on four of the seven meshes (horse 9.9x, venus 10.5x, feline 8.1x, camel
-// 10.8x; bench/README.md "Worst-case error"), so the refinement stays opt-in.
+// away from the input; hrefine2, hrefine3 and hknife brought the bound back (bench/README.md "Worst-case error"), and
+// the refinement is the default at every effort but 0 (PackOptions::local_refinement).
 constexpr double kDefaultMaxErrorPerTarget = 8;
 constexpr double kRefineShare = 0.6;
-// --local-refinement (refine_deviations without max_error) refines at kLocalRefineShare x kDefaultMaxErrorPerTarget x
+// The local refinement without max_error (PackOptions::local_refinement) refines at kLocalRefineShare x kDefaultMaxErrorPerTarget x
 // target_error: the thin-sheet steps (remesh::DeviationRefinementOptions::thin_sheets) converge, so the bound can sit
 // nearer the max aimed at than --max-error's kRefineShare (bench/README.md "Worst-case error").
 constexpr double kLocalRefineShare = 0.85;
@@ -80,8 +80,11 @@ struct PackOptions {
   // Hausdorff distance, Metro's ten samples per face) of the decoded mesh to the input, fraction of the diagonal.
   // 0: none (the local refinement still aims at kDefaultMaxErrorPerTarget x target_error).
   double max_error = 0;
-  bool refine_deviations = false;  // without max_error: the remesher's local refinement (see above)
-  // With refine_deviations: no refinement step, rounding or heights' lambda turns a triangle away from the input
+  // Without max_error: the remesher's local refinement (see above). automatic (the default): with a target error at
+  // every effort whose plan has it (EffortPlan::local_refinement: all but 0); on: at every effort; off: never.
+  enum class LocalRefinement { automatic, on, off };
+  LocalRefinement local_refinement = LocalRefinement::automatic;
+  // With the local refinement: no refinement step, rounding or heights' lambda turns a triangle away from the input
   // (remesh::RemeshOptions::refine_facing_guard; finish_at). false: the refinement of h22max8 (bench/README.md
   // "Worst-case error": within 8x on all seven meshes, but up to 42 decoded triangles facing away).
   bool refine_facing_guard = true;
@@ -187,8 +190,14 @@ struct EffortPlan {
   // trying the seven difference depths first: one patch-section pass of the search's rounded-heights encode instead
   // of eight.
   bool predicted_heights_only = false;
+  // PackOptions::LocalRefinement::automatic refines: everywhere but at effort 0, whose budget (issue 21: 3 s CPU
+  // for a 50k-vertex model) the refinement alone would use up (3-5 s on the paper's models, bench/README.md
+  // "Worst-case error").
+  bool local_refinement = true;
 };
 EffortPlan effort_plan(int effort);  // throws std::invalid_argument outside kMinEffort..kMaxEffort
+// Whether pack refines locally without max_error (PackOptions::local_refinement resolved by options.effort's plan).
+bool refines_locally(const PackOptions& options);
 constexpr double kHeightTolerance = 1.5;
 // The step scales the search tries at the best bit depth: eighths of an octave towards the next coarser depth. The
 // grid size is a whole number of steps, so these also move it in finer increments than the bit depths alone.
