@@ -69,6 +69,25 @@ string(JSON made GET "${last_json}" candidates prm made)
 if(made)
   message(FATAL_ERROR "prm pack --mode general made a piecewise regular candidate:\n${last_json}")
 endif()
+# The local refinement (issue 22): the default with a target error at every --effort but 0; --no-local-refinement
+# turns it off, --local-refinement asks for it at effort 0; the two together are a usage error (exit 1).
+foreach(spec "ON|" "OFF|--no-local-refinement" "OFF|--effort;0" "ON|--effort;0;--local-refinement")  # JSON true: ON
+  string(REPLACE "|" ";" spec "${spec}")
+  list(POP_FRONT spec expected)
+  run_json(pack KEYS local_refinement refined_vertices
+           ARGS pack "${DATA}/cube_quads.obj" -o "${WORK}/cube_refined.prm" --target-error 1e-3 --mode prm ${spec})
+  string(JSON refined GET "${last_json}" local_refinement)
+  string(JSON inserted GET "${last_json}" refined_vertices)
+  if(NOT refined STREQUAL expected OR (NOT refined AND NOT inserted EQUAL 0))
+    message(FATAL_ERROR "prm pack --target-error 1e-3 ${spec}: local_refinement ${refined} (expected ${expected}), "
+                        "${inserted} vertices inserted:\n${last_json}")
+  endif()
+endforeach()
+execute_process(COMMAND "${PRM}" pack "${DATA}/cube_quads.obj" -o "${WORK}/cube_refined.prm" --target-error 1e-3
+                        --local-refinement --no-local-refinement RESULT_VARIABLE rc OUTPUT_QUIET ERROR_QUIET)
+if(NOT rc EQUAL 1)
+  message(FATAL_ERROR "prm pack --local-refinement --no-local-refinement: exit ${rc}, expected 1 (usage)")
+endif()
 # --target-bytes (issue 23): the stream fits the budget and the report names the search; a budget below every stream
 # is exit 3 with the error object (the general path alone, so that this is a few milliseconds).
 run_json(pack KEYS target_bytes target_error bytes_search bytes_search_finest bytes.total distance.rms_rel
