@@ -377,6 +377,54 @@ void AabbTree::closest(const Vec3& p, Hit& hint) const {
   search(p, hint, norm2(p - q));
 }
 
+bool AabbTree::within(const Vec3& p, double bound2, Hit& hint) const {
+  const auto near = [&](uint32_t slot) {
+    const Triangle& t = triangles_[slot];
+    const Vec3 q = closest_point_on_triangle(p, points_[t.a], points_[t.b], points_[t.c]);
+    const double d2 = norm2(p - q);
+    if (!(d2 <= bound2)) return false;
+    hint.distance2 = d2;
+    hint.point = q;
+    hint.face = ids_[slot];
+    return true;
+  };
+  if (hint.found() && hint.face < slot_.size() && near(slot_[hint.face])) return true;
+  if (pairs_.empty()) return false;
+  {
+    const NodePair& root = pairs_[0];
+    const float lo[3] = {root.lo[0][0], root.lo[1][0], root.lo[2][0]};
+    const float hi[3] = {root.hi[0][0], root.hi[1][0], root.hi[2][0]};
+    if (box_distance2(lo, hi, p) > bound2) return false;
+  }
+  uint32_t stack[kStackSize];
+  int top = 0;
+  uint32_t current = 0;
+  for (;;) {
+    const NodePair& pair = pairs_[current / 2];
+    const uint32_t side = current % 2, first = pair.first[side], count = pair.count[side];
+    if (count > 0) {
+      for (uint32_t k = first, end = first + count; k < end; ++k)
+        if (near(k)) return true;
+    } else {
+      const NodePair& children = pairs_[first / 2];
+      double dl, dr;
+      box_distance2_pair(children.lo, children.hi, p, dl, dr);
+      uint32_t nearer = first, farther = first + 1;
+      if (dr < dl) {
+        std::swap(dl, dr);
+        std::swap(nearer, farther);
+      }
+      if (dl <= bound2) {
+        if (dr <= bound2) stack[top++] = farther;
+        current = nearer;
+        continue;
+      }
+    }
+    if (top == 0) return false;
+    current = stack[--top];
+  }
+}
+
 void AabbTree::search(const Vec3& p, Hit& hit, double best) const {
   hit.distance2 = best;
   if (pairs_.empty()) return;
