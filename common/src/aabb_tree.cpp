@@ -25,6 +25,7 @@ constexpr uint32_t kParallelSize = 4096; // ranges larger than this build their 
 constexpr int kSahMaxDepth = 40;         // below this depth, split at the median: bounds the depth (and the query
                                          // stack) even for pathological inputs such as many identical triangles
 constexpr int kStackSize = 128;          // > kSahMaxDepth + log2(2^32)
+constexpr uint32_t kWithinNeighbours = 2;  // within(): triangles tried on each side of the hint's in leaf order
 constexpr double kTraversalCost = 1.0;   // SAH costs: a point-triangle test costs about two box tests
 constexpr double kTriangleCost = 2.0;
 
@@ -388,7 +389,13 @@ bool AabbTree::within(const Vec3& p, double bound2, Hit& hint) const {
     hint.face = ids_[slot];
     return true;
   };
-  if (hint.found() && hint.face < slot_.size() && near(slot_[hint.face])) return true;
+  if (hint.found() && hint.face < slot_.size()) {
+    // The hint's triangle, then its neighbours in leaf order (the same leaf or the next one: nearby in space).
+    const uint32_t s = slot_[hint.face];
+    if (near(s)) return true;
+    for (uint32_t d = 1; d <= kWithinNeighbours; ++d)
+      if ((s >= d && near(s - d)) || (s + d < triangles_.size() && near(s + d))) return true;
+  }
   if (pairs_.empty()) return false;
   {
     const NodePair& root = pairs_[0];

@@ -153,14 +153,17 @@ void for_each_probe(const Vec3& a, const Vec3& b, const Vec3& c, bool dense, dou
   }
 }
 
-// The largest squared distance to the input of the probe points (for_each_probe) of some triangles.
+// The largest squared distance to the input of the probe points (for_each_probe) of some triangles; once it reaches
+// `limit`, the rest are left (a figure at least the limit).
 double probe_deviation2(const Mesh& m, const std::vector<Tri>& tris, const AabbTree& input_tree, double bound,
-                        bool dense) {
+                        bool dense, double limit = HUGE_VAL) {
   double worst = 0;
   AabbTree::Hit hint;
   for (const Tri& t : tris) {
+    if (worst >= limit) break;
     const Vec3 &a = m.positions[t[0]], &b = m.positions[t[1]], &c = m.positions[t[2]];
     for_each_probe(a, b, c, dense, bound, [&](const Vec3& x) {
+      if (worst >= limit) return;
       input_tree.closest(x, hint);
       worst = std::max(worst, hint.distance2);
     });
@@ -326,7 +329,7 @@ bool repaired_insertion(Mesh& m, const std::vector<std::vector<uint32_t>>& verte
     ++check.facing.refusals;
     return false;
   }
-  if (!check.facing.keeps(m, p.tris)) return false;
+  if (!check.facing.keeps_facing(m, p.tris)) return false;  // (repair_facing found them all facing the input)
   // Within kRepairSteps of a neighbour once rounded, the separation may move one of them and turn a triangle (venus:
   // a knife edge repaired five times over, one decoded face away).
   if (check.facing.frame != nullptr)
@@ -1277,7 +1280,10 @@ size_t round_towards_input(PrmMesh& prm, const Mesh& input, const AabbTree& inpu
   // in>pr: the input vertices farther than the share from the mesh, by their closest mesh face.
   const AabbTree tree(m);
   std::vector<AabbTree::Hit> hits(input.positions.size());
-  tbb::parallel_for(size_t{0}, input.positions.size(), [&](size_t v) { hits[v] = tree.closest(input.positions[v]); });
+  // (Only a distance over the share is read: nearer, the first face found that near stands for the closest.)
+  tbb::parallel_for(size_t{0}, input.positions.size(), [&](size_t v) {
+    if (!tree.within(input.positions[v], share2, hits[v])) hits[v] = tree.closest(input.positions[v]);
+  });
   std::vector<std::vector<uint32_t>> attached(m.triangles.size());
   for (uint32_t v = 0; v < hits.size(); ++v)
     if (hits[v].found() && hits[v].distance2 > share2) attached[hits[v].face].push_back(v);
@@ -1296,7 +1302,10 @@ size_t round_towards_input(PrmMesh& prm, const Mesh& input, const AabbTree& inpu
   // to 1.18x the bound off the input, since its triangles' probes came nearer).
   std::vector<double> vertex_dev2(m.positions.size(), 0.0);
   tbb::parallel_for(size_t{0}, m.positions.size(), [&](size_t v) {
-    if (!vertex_faces[v].empty()) vertex_dev2[v] = input_tree.closest(m.positions[v]).distance2;
+    AabbTree::Hit near;  // (as above: within the share, a figure no nearer than the vertex's and within it)
+    if (!vertex_faces[v].empty())
+      vertex_dev2[v] = input_tree.within(m.positions[v], share2, near) ? near.distance2
+                                                                         : input_tree.closest(m.positions[v]).distance2;
   });
   std::vector<std::pair<double, uint32_t>> order;
   for (uint32_t v = 0; v < m.positions.size(); ++v) {
@@ -1329,16 +1338,19 @@ size_t round_towards_input(PrmMesh& prm, const Mesh& input, const AabbTree& inpu
       normals.push_back(triangle_normal_area2(unrounded[t[0]], unrounded[t[1]], unrounded[t[2]]));
     const Vec3 x = unrounded[v];
     // The worst of the triangles' probes and the attached input points with v at p; infinite when one turns over
-    // (or faces away from the input, facing_guard).
-    auto cost = [&](const Vec3& p) {
+    // (or faces away from the input, facing_guard). Once it reaches `limit` the rest is left (hcpu: a way is taken
+    // only below it), a figure at least the limit.
+    auto cost = [&](const Vec3& p, double limit) {
       m.positions[v] = p;
       for (size_t k = 0; k < tris.size(); ++k) {
         const Vec3 n = face_normal(m, tris[k]);
         if (!(dot(n, normals[k]) > 1e-3 * norm(n) * norm(normals[k]))) return std::numeric_limits<double>::infinity();
       }
       if (facing.away(m, tris) > 0) return std::numeric_limits<double>::infinity();
-      double worst = std::max(probe_deviation2(m, tris, input_tree, bound, true), input_tree.closest(p).distance2);
+      double worst = input_tree.closest(p).distance2;
+      if (worst < limit) worst = std::max(worst, probe_deviation2(m, tris, input_tree, bound, true, limit));
       for (uint32_t u : points) {
+        if (worst >= limit) break;
         double best = std::numeric_limits<double>::infinity();
         for (const Tri& t : tris)
           best = std::min(best, point_triangle_distance2(input.positions[u], m.positions[t[0]], m.positions[t[1]],
@@ -1360,14 +1372,14 @@ size_t round_towards_input(PrmMesh& prm, const Mesh& input, const AabbTree& inpu
         ways[k] = {std::clamp(std::floor(q), 0.0, top), std::clamp(std::ceil(q), 0.0, top)};
       }
     }
-    const double keep = cost(nearest);
+    const double keep = cost(nearest, HUGE_VAL);
     double best = keep;
     Vec3 chosen = nearest;
     for (int c = 0; c < 8; ++c) {
       Vec3 p;
       for (int a = 0; a < 3; ++a) p[static_cast<size_t>(a)] = frame.to_real(ways[static_cast<size_t>(a)][(c >> a) & 1], a);
       if (p == nearest) continue;
-      const double e = cost(p);
+      const double e = cost(p, best * kRoundGain);
       if (e < best * kRoundGain) best = e, chosen = p;
     }
     if (chosen == nearest) {
