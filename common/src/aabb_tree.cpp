@@ -355,6 +355,20 @@ inline void box_distance2_pair(const float (&lo2)[3][2], const float (&hi2)[3][2
 #endif
 }
 
+// The two children of an inner node (nodes first and first + 1, one pair), the nearer to p first: their numbers and
+// box distances (a tie keeps the order).
+template <class Pair>
+inline void order_children(const Pair& children, uint32_t first, const Vec3& p, uint32_t& nearer, uint32_t& farther,
+                           double& d_nearer, double& d_farther) {
+  box_distance2_pair(children.lo, children.hi, p, d_nearer, d_farther);
+  nearer = first;
+  farther = first + 1;
+  if (d_farther < d_nearer) {
+    std::swap(d_nearer, d_farther);
+    std::swap(nearer, farther);
+  }
+}
+
 }  // namespace
 
 AabbTree::Hit AabbTree::closest(const Vec3& p) const {
@@ -413,14 +427,9 @@ bool AabbTree::within(const Vec3& p, double bound2, Hit& hint) const {
       for (uint32_t k = first, end = first + count; k < end; ++k)
         if (near(k)) return true;
     } else {
-      const NodePair& children = pairs_[first / 2];
+      uint32_t nearer, farther;
       double dl, dr;
-      box_distance2_pair(children.lo, children.hi, p, dl, dr);
-      uint32_t nearer = first, farther = first + 1;
-      if (dr < dl) {
-        std::swap(dl, dr);
-        std::swap(nearer, farther);
-      }
+      order_children(pairs_[first / 2], first, p, nearer, farther, dl, dr);
       if (dl <= bound2) {
         if (dr <= bound2) stack[top++] = farther;
         current = nearer;
@@ -466,14 +475,9 @@ void AabbTree::search(const Vec3& p, Hit& hit, double best) const {
       }
       if (best == 0) break;
     } else {
-      const NodePair& children = pairs_[first / 2];
+      uint32_t near, far;
       double dl, dr;
-      box_distance2_pair(children.lo, children.hi, p, dl, dr);
-      uint32_t near = first, far = first + 1;
-      if (dr < dl) {
-        std::swap(dl, dr);
-        std::swap(near, far);
-      }
+      order_children(pairs_[first / 2], first, p, near, far, dl, dr);
       if (dl < best) {
         if (dr < best) stack[top++] = Entry{far, dr};
         current = near;
