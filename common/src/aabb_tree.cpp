@@ -25,6 +25,7 @@ constexpr uint32_t kParallelSize = 4096; // ranges larger than this build their 
 constexpr int kSahMaxDepth = 40;         // below this depth, split at the median: bounds the depth (and the query
                                          // stack) even for pathological inputs such as many identical triangles
 constexpr int kStackSize = 128;          // > kSahMaxDepth + log2(2^32)
+constexpr uint32_t kWithinNeighbours = 2;  // within(): triangles tried on each side of the hint's in leaf order
 constexpr double kTraversalCost = 1.0;   // SAH costs: a point-triangle test costs about two box tests
 constexpr double kTriangleCost = 2.0;
 
@@ -354,6 +355,20 @@ inline void box_distance2_pair(const float (&lo2)[3][2], const float (&hi2)[3][2
 #endif
 }
 
+// The two children of an inner node (nodes first and first + 1, one pair), the nearer to p first: their numbers and
+// box distances (a tie keeps the order).
+template <class Pair>
+inline void order_children(const Pair& children, uint32_t first, const Vec3& p, uint32_t& nearer, uint32_t& farther,
+                           double& d_nearer, double& d_farther) {
+  box_distance2_pair(children.lo, children.hi, p, d_nearer, d_farther);
+  nearer = first;
+  farther = first + 1;
+  if (d_farther < d_nearer) {
+    std::swap(d_nearer, d_farther);
+    std::swap(nearer, farther);
+  }
+}
+
 }  // namespace
 
 AabbTree::Hit AabbTree::closest(const Vec3& p) const {
@@ -375,6 +390,55 @@ void AabbTree::closest(const Vec3& p, Hit& hint) const {
   const Vec3 q = closest_point_on_triangle(p, points_[t.a], points_[t.b], points_[t.c]);
   hint.point = q;
   search(p, hint, norm2(p - q));
+}
+
+bool AabbTree::within(const Vec3& p, double bound2, Hit& hint) const {
+  const auto near = [&](uint32_t slot) {
+    const Triangle& t = triangles_[slot];
+    const Vec3 q = closest_point_on_triangle(p, points_[t.a], points_[t.b], points_[t.c]);
+    const double d2 = norm2(p - q);
+    if (!(d2 <= bound2)) return false;
+    hint.distance2 = d2;
+    hint.point = q;
+    hint.face = ids_[slot];
+    return true;
+  };
+  if (hint.found() && hint.face < slot_.size()) {
+    // The hint's triangle, then its neighbours in leaf order (the same leaf or the next one: nearby in space).
+    const uint32_t s = slot_[hint.face];
+    if (near(s)) return true;
+    for (uint32_t d = 1; d <= kWithinNeighbours; ++d)
+      if ((s >= d && near(s - d)) || (s + d < triangles_.size() && near(s + d))) return true;
+  }
+  if (pairs_.empty()) return false;
+  {
+    const NodePair& root = pairs_[0];
+    const float lo[3] = {root.lo[0][0], root.lo[1][0], root.lo[2][0]};
+    const float hi[3] = {root.hi[0][0], root.hi[1][0], root.hi[2][0]};
+    if (box_distance2(lo, hi, p) > bound2) return false;
+  }
+  uint32_t stack[kStackSize];
+  int top = 0;
+  uint32_t current = 0;
+  for (;;) {
+    const NodePair& pair = pairs_[current / 2];
+    const uint32_t side = current % 2, first = pair.first[side], count = pair.count[side];
+    if (count > 0) {
+      for (uint32_t k = first, end = first + count; k < end; ++k)
+        if (near(k)) return true;
+    } else {
+      uint32_t nearer, farther;
+      double dl, dr;
+      order_children(pairs_[first / 2], first, p, nearer, farther, dl, dr);
+      if (dl <= bound2) {
+        if (dr <= bound2) stack[top++] = farther;
+        current = nearer;
+        continue;
+      }
+    }
+    if (top == 0) return false;
+    current = stack[--top];
+  }
 }
 
 void AabbTree::search(const Vec3& p, Hit& hit, double best) const {
@@ -411,14 +475,9 @@ void AabbTree::search(const Vec3& p, Hit& hit, double best) const {
       }
       if (best == 0) break;
     } else {
-      const NodePair& children = pairs_[first / 2];
+      uint32_t near, far;
       double dl, dr;
-      box_distance2_pair(children.lo, children.hi, p, dl, dr);
-      uint32_t near = first, far = first + 1;
-      if (dr < dl) {
-        std::swap(dl, dr);
-        std::swap(near, far);
-      }
+      order_children(pairs_[first / 2], first, p, near, far, dl, dr);
       if (dl < best) {
         if (dr < best) stack[top++] = Entry{far, dr};
         current = near;

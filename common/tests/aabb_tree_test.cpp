@@ -97,6 +97,42 @@ TEST(AabbTree, BoundedQuery) {
   EXPECT_DOUBLE_EQ(hit.distance2, 4.0);
 }
 
+// within(p, bound2) says whether the closest point is within sqrt(bound2), whatever the hint; a yes gives a
+// triangle that near.
+TEST(AabbTree, WithinMatchesTheClosestDistance) {
+  const Mesh soup = test::random_soup(3000, 5);
+  const AabbTree tree(soup);
+  std::mt19937_64 rng(13);
+  std::uniform_real_distribution<double> u(-0.5, 1.5);
+  AabbTree::Hit chained;
+  int yes = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const Vec3 p{u(rng), u(rng), u(rng)};
+    const double closest2 = brute_force2(soup, p);
+    for (double bound2 : {0.0, 1e-4, 1e-3, 1e-2, closest2}) {
+      AabbTree::Hit fresh;
+      const bool near = tree.within(p, bound2, fresh);
+      ASSERT_EQ(near, closest2 <= bound2) << "query " << i << " bound2 " << bound2;
+      const AabbTree::Hit before = chained;
+      ASSERT_EQ(tree.within(p, bound2, chained), near) << "query " << i << " from a hint";
+      if (!near) {
+        EXPECT_EQ(chained.face, before.face);  // left as it was
+        continue;
+      }
+      ++yes;
+      for (const AabbTree::Hit& h : {fresh, chained}) {
+        ASSERT_TRUE(h.found());
+        EXPECT_LE(h.distance2, bound2);
+        EXPECT_GE(h.distance2, closest2);
+        const Tri& t = soup.triangles[h.face];
+        EXPECT_EQ(h.distance2, point_triangle_distance2(p, soup.positions[t[0]], soup.positions[t[1]],
+                                                        soup.positions[t[2]]));
+      }
+    }
+  }
+  EXPECT_GT(yes, 2000);  // every query at its own distance, and some at the fixed bounds
+}
+
 TEST(AabbTree, IdenticalTrianglesKeepTheTreeShallow) {
   Mesh m;
   m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};

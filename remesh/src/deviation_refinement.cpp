@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <vector>
 
 #include "prm/point_triangle_distance.h"
@@ -152,20 +153,46 @@ void for_each_probe(const Vec3& a, const Vec3& b, const Vec3& c, bool dense, dou
   }
 }
 
-// The largest squared distance to the input of the probe points (for_each_probe) of some triangles.
+// The largest squared distance to the input of the probe points (for_each_probe) of some triangles; once it reaches
+// `limit`, the rest are left (a figure at least the limit).
 double probe_deviation2(const Mesh& m, const std::vector<Tri>& tris, const AabbTree& input_tree, double bound,
-                        bool dense) {
+                        bool dense, double limit = HUGE_VAL) {
   double worst = 0;
   AabbTree::Hit hint;
   for (const Tri& t : tris) {
+    if (worst >= limit) break;
     const Vec3 &a = m.positions[t[0]], &b = m.positions[t[1]], &c = m.positions[t[2]];
     for_each_probe(a, b, c, dense, bound, [&](const Vec3& x) {
+      if (worst >= limit) return;
       input_tree.closest(x, hint);
       worst = std::max(worst, hint.distance2);
     });
   }
   return worst;
 }
+// A mesh face whose dense probes all lie within kQuietShare x the bound of the input is quiet: no figure below that
+// is read (a deviation is over the bound, the fine probes start at kFineProbeShare x it, round_towards_input's
+// vertices at kRoundShare x it), so its probes only ask whether the input is that near (AabbTree::within, which stops
+// at the first input triangle so near) instead of for their closest points (hcpu: most of the refinement's CPU was
+// these probes' closest-point queries, and most faces are quiet).
+constexpr double kQuietShare = kRoundShare;
+static_assert(kQuietShare <= kRoundShare && kQuietShare <= kFineProbeShare, "a quiet face's figures are never read");
+// Are all of triangle (a, b, c)'s dense probes (its grid_divisions grid at `bound`) within squared distance quiet2 of
+// `tree`'s surface? Yes: `hit` holds a figure between their worst squared distance and quiet2 (and a surface point
+// that near).
+bool quiet_probes(const AabbTree& tree, const Vec3& a, const Vec3& b, const Vec3& c, double bound, double quiet2,
+                  AabbTree::Hit& hit) {
+  AabbTree::Hit hint, worst;
+  bool quiet = true;
+  for_each_grid_point(a, b, c, grid_divisions(a, b, c, bound), [&](const Vec3& x) {
+    if (!quiet) return;
+    quiet = tree.within(x, quiet2, hint);
+    if (quiet && !(worst.found() && worst.distance2 >= hint.distance2)) worst = hint;
+  });
+  if (quiet) hit = worst;
+  return quiet;
+}
+
 // The triangles of some faces.
 std::vector<Tri> triangles_of(const Mesh& m, const std::vector<uint32_t>& faces) {
   std::vector<Tri> tris;
@@ -302,7 +329,7 @@ bool repaired_insertion(Mesh& m, const std::vector<std::vector<uint32_t>>& verte
     ++check.facing.refusals;
     return false;
   }
-  if (!check.facing.keeps(m, p.tris)) return false;
+  if (!check.facing.keeps_facing(m, p.tris)) return false;  // (repair_facing found them all facing the input)
   // Within kRepairSteps of a neighbour once rounded, the separation may move one of them and turn a triangle (venus:
   // a knife edge repaired five times over, one decoded face away).
   if (check.facing.frame != nullptr)
@@ -954,6 +981,8 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
   for (const Tri& t : input.triangles)
     for (uint32_t v : t) used[v] = 1;
   const double bound2 = options.max_deviation * options.max_deviation;
+  // As round_towards_input's share2 (bit for bit: a quiet face's figure never passes it).
+  const double quiet2 = kQuietShare * kQuietShare * options.max_deviation * options.max_deviation;
   std::vector<std::vector<uint32_t>> vertex_faces;
   StrayCheck check;
   if (options.thin_sheets && options.stray_check) {
@@ -971,6 +1000,23 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
   std::vector<Vec3> input_face_point;
   std::vector<Vec3> probe_point;
   std::vector<uint8_t> stale;
+  // all_input_faces: an input triangle whose probes all lie within kFaceProbeShare x the bound of the first round's
+  // mesh is `quiet` there: its probes only ask whether the mesh is that near (quiet_probes), and its worst probe's
+  // closest face, which later rounds read (a changed one has it probed again), is found on the first round's mesh
+  // (first_tree) only when a face a later round changed lies that near it (hcpu: the same figures, for most of the
+  // input's probes' closest-point queries).
+  std::unique_ptr<AabbTree> first_tree;
+  Mesh first_mesh;
+  std::vector<uint8_t> quiet_face;
+  const auto probe_input_face = [&](const AabbTree& on, uint32_t f) {
+    const Tri& t = input.triangles[f];
+    const Vec3 &a = input.positions[t[0]], &b = input.positions[t[1]], &c = input.positions[t[2]];
+    AabbTree::Hit hint;
+    input_face_hit[f] = AabbTree::Hit{};
+    for_each_grid_point(a, b, c, grid_divisions(a, b, c, options.max_deviation), [&](const Vec3& x) {
+      probe_worst(on, x, options.dense_probes, hint, input_face_hit[f], input_face_point[f]);
+    });
+  };
   while (st.rounds < kMaxRounds && st.inserted < budget) {
     ++st.rounds;
     stale.resize(m.triangles.size(), 1);
@@ -982,7 +1028,8 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
     // the bound or closest to a face the last round changed are measured again: the others' distance can only have
     // shrunk (the faces that did not change are where they were), and is read only against that share and the
     // bound, so the figures are those of measuring all.
-    const AabbTree tree(m);
+    auto round_tree = std::make_unique<AabbTree>(m);
+    const AabbTree& tree = *round_tree;
     const double share2 = kFaceProbeShare * kFaceProbeShare * bound2;
     hits.resize(input.positions.size());
     tbb::parallel_for(size_t{0}, input.positions.size(), [&](size_t v) {
@@ -1004,6 +1051,37 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
     if (options.thin_sheets) {
       input_face_hit.resize(input.triangles.size());
       input_face_point.resize(input.triangles.size());
+      const bool first_quiet = options.all_input_faces && st.rounds == 1;
+      if (first_quiet) quiet_face.assign(input.triangles.size(), 0);
+      // A quiet triangle near a face the last round changed (that face as it was in the first round): its figures
+      // as the first round would have found them.
+      if (!quiet_face.empty() && st.rounds > 1) {
+        std::vector<Tri> changed_first;
+        for (uint32_t g = 0; g < first_mesh.triangles.size(); ++g)
+          if (stale[g]) changed_first.push_back(first_mesh.triangles[g]);
+        if (!changed_first.empty()) {
+          const AabbTree changed_tree(first_mesh.positions, changed_first);
+          tbb::parallel_for(size_t{0}, input.triangles.size(), [&](size_t f) {
+            if (!quiet_face[f]) return;
+            const Tri& t = input.triangles[f];
+            const Vec3 &a = input.positions[t[0]], &b = input.positions[t[1]], &c = input.positions[t[2]];
+            // First the ball around the centroid that holds every probe's reach (one query instead of one a probe;
+            // 0.1% more for the rounding).
+            const Vec3 centroid = (1.0 / 3) * (a + b + c);
+            const double reach =
+                1.001 * (std::sqrt(std::max({norm2(a - centroid), norm2(b - centroid), norm2(c - centroid)})) +
+                         std::sqrt(share2));
+            AabbTree::Hit hint;
+            if (!changed_tree.within(centroid, reach * reach, hint)) return;
+            bool near = false;
+            for_each_grid_point(a, b, c, grid_divisions(a, b, c, options.max_deviation),
+                                [&](const Vec3& x) { near = near || changed_tree.within(x, share2, hint); });
+            if (!near) return;
+            probe_input_face(*first_tree, static_cast<uint32_t>(f));
+            quiet_face[f] = 0;
+          });
+        }
+      }
       std::vector<uint32_t> near_far;
       for (uint32_t f = 0; f < input.triangles.size(); ++f) {
         const Tri& t = input.triangles[f];
@@ -1016,22 +1094,30 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
           }
         const AabbTree::Hit& old = input_face_hit[f];
         const bool probed = options.all_input_faces && old.found();
+        // (A quiet triangle's worst probe's closest face is none the last round changed: see above.)
         if (worst > share2 || (options.all_input_faces && st.rounds == 1) ||
-            (probed && (changed || old.distance2 > share2 || stale[old.face])))
+            (probed && (changed || old.distance2 > share2 || (!quiet_face[f] && stale[old.face]))))
           near_far.push_back(f);
         else if (!options.all_input_faces)
           input_face_hit[f] = AabbTree::Hit{};
       }
       tbb::parallel_for(size_t{0}, near_far.size(), [&](size_t i) {
         const uint32_t f = near_far[i];
-        const Tri& t = input.triangles[f];
-        const Vec3 &a = input.positions[t[0]], &b = input.positions[t[1]], &c = input.positions[t[2]];
-        AabbTree::Hit hint;
-        input_face_hit[f] = AabbTree::Hit{};
-        for_each_grid_point(a, b, c, grid_divisions(a, b, c, options.max_deviation), [&](const Vec3& x) {
-          probe_worst(tree, x, options.dense_probes, hint, input_face_hit[f], input_face_point[f]);
-        });
+        if (!quiet_face.empty()) quiet_face[f] = 0;
+        if (first_quiet) {
+          const Tri& t = input.triangles[f];
+          if (quiet_probes(tree, input.positions[t[0]], input.positions[t[1]], input.positions[t[2]],
+                           options.max_deviation, share2, input_face_hit[f])) {
+            quiet_face[f] = 1;
+            return;
+          }
+        }
+        probe_input_face(tree, f);
       });
+      if (first_quiet) {
+        first_mesh = m;
+        first_tree = std::move(round_tree);
+      }
       for (uint32_t f = 0; f < input.triangles.size(); ++f)
         if (input_face_hit[f].found() && input_face_hit[f].distance2 > bound2)
           far.push_back({input_face_hit[f].face, input_face_hit[f].point, input_face_point[f],
@@ -1064,6 +1150,9 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
       probe_hit[f] = AabbTree::Hit{};
       const Tri& t = m.triangles[f];
       const Vec3 &a = m.positions[t[0]], &b = m.positions[t[1]], &c = m.positions[t[2]];
+      if (options.thin_sheets && options.dense_probes &&
+          quiet_probes(input_tree, a, b, c, options.max_deviation, quiet2, probe_hit[f]))
+        return;
       AabbTree::Hit hint;
       const auto visit = [&](const Vec3& x) {
         probe_worst(input_tree, x, options.dense_probes, hint, probe_hit[f], probe_point[f]);
@@ -1146,9 +1235,17 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
     probe_hit.resize(m.triangles.size());
     face_deviation2->assign(m.triangles.size(), 0.0);
     tbb::parallel_for(size_t{0}, m.triangles.size(), [&](size_t f) {
-      (*face_deviation2)[f] = stale[f] ? probe_deviation2(m, {m.triangles[f]}, input_tree, options.max_deviation, true)
-                              : probe_hit[f].found() ? probe_hit[f].distance2
-                                                     : 0.0;
+      if (!stale[f]) {
+        (*face_deviation2)[f] = probe_hit[f].found() ? probe_hit[f].distance2 : 0.0;
+        return;
+      }
+      const Tri& t = m.triangles[f];
+      AabbTree::Hit quiet;
+      (*face_deviation2)[f] =
+          quiet_probes(input_tree, m.positions[t[0]], m.positions[t[1]], m.positions[t[2]], options.max_deviation,
+                       quiet2, quiet)
+              ? quiet.distance2
+              : probe_deviation2(m, {t}, input_tree, options.max_deviation, true);
     });
   }
   st.facing_refused = check.facing.refusals;
@@ -1183,7 +1280,10 @@ size_t round_towards_input(PrmMesh& prm, const Mesh& input, const AabbTree& inpu
   // in>pr: the input vertices farther than the share from the mesh, by their closest mesh face.
   const AabbTree tree(m);
   std::vector<AabbTree::Hit> hits(input.positions.size());
-  tbb::parallel_for(size_t{0}, input.positions.size(), [&](size_t v) { hits[v] = tree.closest(input.positions[v]); });
+  // (Only a distance over the share is read: nearer, the first face found that near stands for the closest.)
+  tbb::parallel_for(size_t{0}, input.positions.size(), [&](size_t v) {
+    if (!tree.within(input.positions[v], share2, hits[v])) hits[v] = tree.closest(input.positions[v]);
+  });
   std::vector<std::vector<uint32_t>> attached(m.triangles.size());
   for (uint32_t v = 0; v < hits.size(); ++v)
     if (hits[v].found() && hits[v].distance2 > share2) attached[hits[v].face].push_back(v);
@@ -1202,7 +1302,10 @@ size_t round_towards_input(PrmMesh& prm, const Mesh& input, const AabbTree& inpu
   // to 1.18x the bound off the input, since its triangles' probes came nearer).
   std::vector<double> vertex_dev2(m.positions.size(), 0.0);
   tbb::parallel_for(size_t{0}, m.positions.size(), [&](size_t v) {
-    if (!vertex_faces[v].empty()) vertex_dev2[v] = input_tree.closest(m.positions[v]).distance2;
+    AabbTree::Hit near;  // (as above: within the share, a figure no nearer than the vertex's and within it)
+    if (!vertex_faces[v].empty())
+      vertex_dev2[v] = input_tree.within(m.positions[v], share2, near) ? near.distance2
+                                                                         : input_tree.closest(m.positions[v]).distance2;
   });
   std::vector<std::pair<double, uint32_t>> order;
   for (uint32_t v = 0; v < m.positions.size(); ++v) {
@@ -1235,16 +1338,19 @@ size_t round_towards_input(PrmMesh& prm, const Mesh& input, const AabbTree& inpu
       normals.push_back(triangle_normal_area2(unrounded[t[0]], unrounded[t[1]], unrounded[t[2]]));
     const Vec3 x = unrounded[v];
     // The worst of the triangles' probes and the attached input points with v at p; infinite when one turns over
-    // (or faces away from the input, facing_guard).
-    auto cost = [&](const Vec3& p) {
+    // (or faces away from the input, facing_guard). Once it reaches `limit` the rest is left (hcpu: a way is taken
+    // only below it), a figure at least the limit.
+    auto cost = [&](const Vec3& p, double limit) {
       m.positions[v] = p;
       for (size_t k = 0; k < tris.size(); ++k) {
         const Vec3 n = face_normal(m, tris[k]);
         if (!(dot(n, normals[k]) > 1e-3 * norm(n) * norm(normals[k]))) return std::numeric_limits<double>::infinity();
       }
       if (facing.away(m, tris) > 0) return std::numeric_limits<double>::infinity();
-      double worst = std::max(probe_deviation2(m, tris, input_tree, bound, true), input_tree.closest(p).distance2);
+      double worst = input_tree.closest(p).distance2;
+      if (worst < limit) worst = std::max(worst, probe_deviation2(m, tris, input_tree, bound, true, limit));
       for (uint32_t u : points) {
+        if (worst >= limit) break;
         double best = std::numeric_limits<double>::infinity();
         for (const Tri& t : tris)
           best = std::min(best, point_triangle_distance2(input.positions[u], m.positions[t[0]], m.positions[t[1]],
@@ -1266,14 +1372,14 @@ size_t round_towards_input(PrmMesh& prm, const Mesh& input, const AabbTree& inpu
         ways[k] = {std::clamp(std::floor(q), 0.0, top), std::clamp(std::ceil(q), 0.0, top)};
       }
     }
-    const double keep = cost(nearest);
+    const double keep = cost(nearest, HUGE_VAL);
     double best = keep;
     Vec3 chosen = nearest;
     for (int c = 0; c < 8; ++c) {
       Vec3 p;
       for (int a = 0; a < 3; ++a) p[static_cast<size_t>(a)] = frame.to_real(ways[static_cast<size_t>(a)][(c >> a) & 1], a);
       if (p == nearest) continue;
-      const double e = cost(p);
+      const double e = cost(p, best * kRoundGain);
       if (e < best * kRoundGain) best = e, chosen = p;
     }
     if (chosen == nearest) {

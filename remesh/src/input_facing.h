@@ -105,9 +105,18 @@ struct InputFacing {
   // that let the separation leave 3 decoded faces away, 0 with this.
   bool keeps(const Mesh& m, const std::vector<Tri>& new_tris) const {
     if (input == nullptr) return true;
-    bool ok = away(m, new_tris) == 0;
-    for (size_t i = 0; ok && i < new_tris.size(); ++i)
-      for (uint32_t v : new_tris[i]) ok = ok && !shares_cell(m, v);
+    if (away(m, new_tris) != 0) {
+      ++refusals;
+      return false;
+    }
+    return keeps_facing(m, new_tris);
+  }
+  // keeps() of triangles just found facing the input (repair_facing tested each): only the shared points (hcpu: the
+  // facing test again was a second closest-point query per triangle).
+  bool keeps_facing(const Mesh& m, const std::vector<Tri>& facing_tris) const {
+    bool ok = true;
+    for (size_t i = 0; ok && i < facing_tris.size(); ++i)
+      for (uint32_t v : facing_tris[i]) ok = ok && !shares_cell(m, v);
     refusals += !ok;
     return ok;
   }

@@ -23,10 +23,14 @@ namespace {
 // the remesher's large, short-lived arrays (sliced reliefs, OpenMesh kernels, tree scratch) come from the heaps of
 // its threads, which keep the freed pages. A fixed threshold maps every block of 1 MiB or more and unmaps it when
 // freed: measured on the 537k-vertex igea, `prm remesh` peaks at 291 MB instead of 380 MB, for ~0.85 s more system
-// time in 20 s (bench/README.md "Scale").
+// time in 20 s (bench/README.md "Scale"). The heaps grow and shrink by at least 32 MiB (M_TOP_PAD; glibc's default
+// is 128 KiB), so that the smaller blocks' pages are not returned and faulted in again at every step: `pack --effort
+// 0` of the venus spent 0.26-0.39 s of its ~4.1 s CPU in the kernel, 0.08-0.11 s with the pad, for 8-17 MB more peak
+// (issue 21, bench/README.md "pack effort").
 void map_large_blocks() {
 #if defined(__GLIBC__)
   mallopt(M_MMAP_THRESHOLD, 1 << 20);
+  mallopt(M_TOP_PAD, 32 << 20);
 #endif
 }
 

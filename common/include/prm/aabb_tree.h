@@ -45,6 +45,11 @@ class AabbTree {
   // the search from the start, which makes coherent query sequences much faster. `hint` is updated in place to the
   // answer for p. A hint with found() false starts an unbounded search.
   void closest(const Vec3& p, Hit& hint) const;
+  // Is some triangle within squared distance bound2 of p (at most)? Tries `hint`'s triangle first (a nearby query's
+  // answer) and its neighbours in leaf order, then stops at the first triangle found that near: cheaper than closest() when the only question is
+  // whether p is that near. Yes: `hint` is set to that triangle and its closest point and squared distance (not
+  // necessarily the closest). No: `hint` is left as it was.
+  bool within(const Vec3& p, double bound2, Hit& hint) const;
 
   size_t num_triangles() const { return triangles_.size(); }
   bool empty() const { return triangles_.empty(); }
