@@ -129,9 +129,9 @@ void add_pack_command(CLI::App& root) {
                     "turns a triangle away from the input, an insertion's edges flipped until they face it, a lambda's heights "
                     "rounded at the corners it would turn, and the separation of vertices sharing a quantization point "
                     "moves none beyond that bound; bench/README.md "
-                    "'Worst-case error': the horse's max from 25x to 7.5x the target for +3.5% bytes, venus from 16x to "
+                    "'Worst-case error': the horse's max from 25x to 7.5x the target for +3.6% bytes, venus from 16x to "
                     "7.4x for +2.9%, the feline from 19x to 7.5x for +1.3%, the camel from 29x to 7.5x for -1.0%; "
-                    "opt-in: within 8x on 7 meshes, but over 10 s of CPU on one)");
+                    "opt-in: within 8x on 7 meshes, not yet the default)");
   cmd->add_flag("--adaptive", opt->adaptive,
                 "A grid size per relief (format 1.5, spec §8.4.2): each relief's grid chosen by equal slope (the same "
                 "marginal bytes per unit of squared error in every relief) from its error measured on two uniform "
