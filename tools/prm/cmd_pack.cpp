@@ -132,8 +132,8 @@ void add_pack_command(CLI::App& root) {
           "turns a triangle away from the input, an insertion's edges flipped until they face it, a lambda's heights "
           "rounded at the corners it would turn, and the separation of vertices sharing a quantization point "
           "moves none beyond that bound; bench/README.md "
-          "'Worst-case error': the horse's max from 25x to 7.6x the target for +3.5% bytes, venus from 16x to "
-          "7.4x for +3.1%, the feline from 19x to 8.1x for +1.3%, the camel from 29x to 7.5x for -2.8%)");
+          "'Worst-case error': the horse's max from 25x to 7.5x the target for +3.6% bytes, venus from 16x to "
+          "7.4x for +2.9%, the feline from 19x to 7.5x for +1.3%, the camel from 29x to 7.5x for -1.0%)");
   cmd->add_flag("--no-local-refinement", opt->refine_off,
                 "Without --max-error: no local refinement (the streams of before it was the default: smaller by up to "
                 "4% on the paper's models, their max error up to 34x the target)")
