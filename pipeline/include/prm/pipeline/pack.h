@@ -50,19 +50,15 @@ const char* pack_mode_name(PackMode mode);  // "prm", "general", "auto" (the --m
 
 // The worst case (issue 22): with PackOptions::max_error, the remesher's local refinement inserts vertices where the
 // mesh strays more than kRefineShare x max_error from the input, and the search needs the decoded mesh's max within
-// max_error. Without it, refine_deviations asks for the refinement at kLocalRefineShare x kDefaultMaxErrorPerTarget x
-// target_error; it is off by default: measured in bench/README.md "Worst-case error" (h22max6) at 2e-4, it takes
-// the horse from 25x the target to 7.6x (+5.9% bytes), venus from 16x to 7.5x (+4.7%), the feline from 19x to 7.4x
-// (+1.0%), bunny_zipper from 14x to 7.5x (+4.6%), the camel from 29x to 7.5x (+1.0%), bunny00 from 10.2x to 7.4x
-// (+1.5%) and the armadillo to 7.0x (-1.0%): 8x at +5% or less on all but the horse. The search then runs unrefined
-// and refines only the grid it chooses (RemeshOptions::refine_last): 7-11 s CPU on the paper's models (issue 21:
-// 10 s; the feline 11.4 s there, 9.3-10.0 s in h22max7's runs). When the heights' lambda gives a stream over 8x the
-// target, a smaller one that meets both is taken (finish_at; at most kHeightGuardTries of them, then the rounded
-// heights: pipeline/src/height_guard.h). With max_error the refinement runs without its notch steps (RemeshOptions::refine_notches), as on
-// main before them.
-// hrefine: with refine_facing_guard (the default) no refinement step, rounding or heights' lambda turns a triangle
-// away from the input; hrefine2, hrefine3 and hknife brought the bound back (bench/README.md "Worst-case error"), and
-// the refinement is the default at every effort but 0 (PackOptions::local_refinement).
+// max_error. Without it, the local refinement (PackOptions::local_refinement: the default at every effort but 0)
+// refines at kLocalRefineShare x kDefaultMaxErrorPerTarget x target_error, and the search runs unrefined and refines
+// only the grid it chooses (RemeshOptions::refine_last: issue 21's CPU budget). When the heights' lambda gives a
+// stream over 8x the target, a smaller one that meets both is taken (finish_at; at most kHeightGuardTries of them,
+// then the rounded heights: pipeline/src/height_guard.h). With max_error the refinement runs without its notch steps
+// (RemeshOptions::refine_notches). With refine_facing_guard (the default) no refinement step, rounding or heights'
+// lambda turns a triangle away from the input. Measured at 2e-4 (bench/README.md "Worst-case error", hdefault): the
+// max from 10.2-29x the target to 6.6-7.5x on the paper's models and three CGAL meshes, for -1.0% to +3.6% bytes and
+// 0.9-3.6 s more CPU.
 constexpr double kDefaultMaxErrorPerTarget = 8;
 constexpr double kRefineShare = 0.6;
 // The local refinement without max_error (PackOptions::local_refinement) refines at kLocalRefineShare x kDefaultMaxErrorPerTarget x
