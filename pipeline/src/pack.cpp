@@ -143,14 +143,7 @@ Remeshed remesh_at(const SearchContext& ctx, const PackOptions& options, int bit
   // (deviation_refinement.h); without it, the refinement (when asked for) aims at kDefaultMaxErrorPerTarget x the
   // target.
   ro.max_error = kQuantizationMargin * options.max_error;
-  ro.refine_error = options.max_error > 0      ? kRefineShare * options.max_error
-                    : ctx.plan.local_refinement ? kLocalRefineShare * kDefaultMaxErrorPerTarget * options.target_error
-                                                : 0;
-  // The notch steps (DeviationRefinementOptions::lattice_moves .. stray_check) only for --local-refinement: with
-  // --max-error the search keeps the first thin-sheet refinement (bench/README.md "Worst-case error", h22thin3).
-  ro.refine_notches = !(options.max_error > 0);
-  ro.refine_facing_guard = options.refine_facing_guard;
-  ro.refine_last = ctx.plan.local_refinement && !(options.max_error > 0);  // issue 21's CPU budget (h22max5)
+  set_refinement(ro, options.target_error, options.max_error, ctx.plan.local_refinement, options.refine_facing_guard);
   // The search measures what the decoder will output: the candidate quantized to the stream's frame (its lattice
   // vertices are exact already; the heights and the other vertices round to the nearest step), or, when the
   // encoder may choose the heights, the candidate encoded and decoded.
@@ -570,6 +563,17 @@ bool refines_locally(const PackOptions& options) {
   using R = PackOptions::LocalRefinement;
   return options.local_refinement == R::on ||
          (options.local_refinement == R::automatic && effort_plan(options.effort).local_refinement);
+}
+
+void set_refinement(remesh::RemeshOptions& ro, double target_error, double max_error, bool local, bool facing_guard) {
+  ro.refine_error = max_error > 0 ? kRefineShare * max_error
+                    : local       ? kLocalRefineShare * kDefaultMaxErrorPerTarget * target_error
+                                  : 0;
+  // The notch steps (DeviationRefinementOptions::lattice_moves .. stray_check) only for the local refinement: with
+  // --max-error the search keeps the first thin-sheet refinement (bench/README.md "Worst-case error", h22thin3).
+  ro.refine_notches = !(max_error > 0);
+  ro.refine_facing_guard = facing_guard;
+  ro.refine_last = local && !(max_error > 0);  // issue 21's CPU budget (h22max5)
 }
 
 namespace {

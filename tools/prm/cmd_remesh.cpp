@@ -1,6 +1,7 @@
 // prm remesh IN -o OUT.ply (--grid G | --grid-fraction F | --target-error E) [--tau T] [--bits B] [--fill-holes]
-// [--json]: the piecewise regular mesh of paper §2, with its lattice labels (docs/ARCHITECTURE.md "The PRM file").
-// Like pack, it keeps the input's boundary loops (issue 22) unless --fill-holes closes them first.
+// [--no-local-refinement] [--json]: the piecewise regular mesh of paper §2, with its lattice labels
+// (docs/ARCHITECTURE.md "The PRM file"). Like pack, it keeps the input's boundary loops (issue 22) unless
+// --fill-holes closes them first, and with a target error it refines locally as pack does (pipeline::set_refinement).
 #include <chrono>
 #include <optional>
 #include <cstdio>
@@ -13,6 +14,7 @@
 #include "prm/mesh_repair.h"
 #include "prm/mesh_validate.h"
 #include "prm/metro_distance.h"
+#include "prm/pipeline/pack.h"
 #include "prm/remesh/remesh.h"
 
 namespace prm::cli {
@@ -23,7 +25,7 @@ void add_remesh_command(CLI::App& root) {
     std::string input, output;
     double grid = 0, grid_fraction = 0, target = 0, tau = 0.2;
     int bits = 12;
-    bool json = false, naive = false, no_fit = false, fill_holes = false;
+    bool json = false, naive = false, no_fit = false, fill_holes = false, no_refine = false;
     double error_flip_weight = remesh::kDefaultErrorFlipWeight;
     size_t samples = 0;  // Metro's default density (ten per face): what `prm compare` and the tests measure
   };
@@ -50,6 +52,12 @@ void add_remesh_command(CLI::App& root) {
   cmd->add_flag("--fill-holes", opt->fill_holes,
                 "Close every boundary loop with a fan before remeshing (the paper's protocol); by default the loops "
                 "are kept and the output has the same boundary loops as the input (issue 22)");
+  cmd->add_flag("--no-local-refinement", opt->no_refine,
+                "With --target-error: no local refinement (by default, as in pack, vertices are inserted or moved "
+                "where the remeshed surface strays more than " +
+                    std::to_string(pipeline::kLocalRefineShare * pipeline::kDefaultMaxErrorPerTarget).substr(0, 3) +
+                    " x --target-error from the input, on the grid the search chooses; without it the max error is "
+                    "up to 25x the target on the paper's models: bench/README.md 'Remesher')");
   cmd->add_flag("--json", opt->json, kJsonFlagHelp);
   cmd->callback([opt] {
     if (opt->grid <= 0 && opt->grid_fraction <= 0 && opt->target <= 0)
@@ -75,6 +83,9 @@ void add_remesh_command(CLI::App& root) {
     ro.grid_size = opt->grid;
     ro.grid_fraction = opt->grid_fraction;
     ro.target_error = opt->target;
+    // With a target error, the local refinement of pack (issue 22: the max within kDefaultMaxErrorPerTarget x it).
+    const bool refine = opt->target > 0 && !opt->no_refine;
+    pipeline::set_refinement(ro, opt->target, 0, refine, true);
     MetroOptions mo;
     mo.samples = opt->samples;
     // A fixed grid is measured once, after the resampling: the reference (the input's AABB tree, the input borrowed) is
@@ -123,6 +134,8 @@ void add_remesh_command(CLI::App& root) {
           {"regular_patches", remesh::count_regular_patches(res.prm)},
           {"lattice_vertices", s.lattice_vertices},
           {"unrepaired_triangles", s.unrepaired},
+          {"local_refinement", refine}, {"refined_vertices", s.deviation_inserts},
+          {"refined_moves", s.deviation_moves},
           {"stats", {{"sliced_vertices", s.sliced_vertices}, {"collapses", s.collapses}, {"cell_flips", s.cell_flips},
                      {"stuck", s.stuck}, {"fill_triangles", s.fill_triangles}, {"loops_broken", s.loops_broken},
                      {"seam_collapses", s.seam_collapses}, {"area_flips", s.area_flips}, {"valence_flips", s.valence_flips},
@@ -148,6 +161,8 @@ void add_remesh_command(CLI::App& root) {
       for (const auto& st : res.search) std::printf(" g=%lld:%.2e", static_cast<long long>(st.grid), st.error.rms);
       std::printf("\n");
     }
+    if (refine)
+      std::printf("  local refinement: %zu vertices inserted, %zu moved\n", s.deviation_inserts, s.deviation_moves);
     if (s.unrepaired) std::printf("  warning: %zu flipped or zero-area triangles could not be removed\n", s.unrepaired);
     if (s.quantized_moves)
       std::printf("  %zu vertices moved by up to two quantization steps, so that no triangle loses its area at %d bits\n",

@@ -122,6 +122,19 @@ if(NOT loops_out EQUAL 0 OR NOT closed EQUAL 1)
   message(FATAL_ERROR "prm remesh open_box.off --fill-holes: loops ${loops_out} out, ${closed} closed; expected "
                       "0, 1:\n${last_json}")
 endif()
+# remesh --target-error refines locally as pack does (issue 22), unless --no-local-refinement; a grid given: never.
+foreach(spec "ON|--target-error;1e-3" "OFF|--target-error;1e-3;--no-local-refinement" "OFF|--grid-fraction;0.1")
+  string(REPLACE "|" ";" spec "${spec}")
+  list(POP_FRONT spec expected)
+  run_json(remesh KEYS local_refinement refined_vertices refined_moves
+           ARGS remesh "${DATA}/cube_quads.obj" -o "${WORK}/cube_refined_prm.ply" ${spec})
+  string(JSON refined GET "${last_json}" local_refinement)
+  string(JSON inserted GET "${last_json}" refined_vertices)
+  if(NOT refined STREQUAL expected OR (NOT refined AND NOT inserted EQUAL 0))
+    message(FATAL_ERROR "prm remesh ${spec}: local_refinement ${refined} (expected ${expected}), ${inserted} vertices "
+                        "inserted:\n${last_json}")
+  endif()
+endforeach()
 run_json(render KEYS input output ${counts} seconds ARGS render "${WORK}/tet.prm" -o "${WORK}/tet.png" --size 64x64)
 
 # render of a .prm draws the mesh: more than the background in the picture.

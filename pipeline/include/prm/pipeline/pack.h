@@ -194,6 +194,11 @@ struct EffortPlan {
 EffortPlan effort_plan(int effort);  // throws std::invalid_argument outside kMinEffort..kMaxEffort
 // Whether pack refines locally without max_error (PackOptions::local_refinement resolved by options.effort's plan).
 bool refines_locally(const PackOptions& options);
+// The remesher's refinement (RemeshOptions::refine_error, refine_notches, refine_last, refine_facing_guard) for a
+// target error, as pack() asks for it: with max_error > 0 at kRefineShare x max_error, every grid of the search
+// refined, no notch steps; otherwise, when `local`, at kLocalRefineShare x kDefaultMaxErrorPerTarget x target_error,
+// only the chosen grid refined; otherwise none. `prm remesh --target-error` refines through it too (issue 22).
+void set_refinement(remesh::RemeshOptions& ro, double target_error, double max_error, bool local, bool facing_guard);
 constexpr double kHeightTolerance = 1.5;
 // The step scales the search tries at the best bit depth: eighths of an octave towards the next coarser depth. The
 // grid size is a whole number of steps, so these also move it in finer increments than the bit depths alone.
