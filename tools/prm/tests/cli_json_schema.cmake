@@ -69,19 +69,24 @@ string(JSON made GET "${last_json}" candidates prm made)
 if(made)
   message(FATAL_ERROR "prm pack --mode general made a piecewise regular candidate:\n${last_json}")
 endif()
+# check_local_refinement(<command> <ON|OFF> <arguments...>): `prm <command> <arguments> --json` says local_refinement
+# <ON|OFF> (JSON true: ON), and refined no vertex when off.
+function(check_local_refinement command expected)
+  run_json(${command} KEYS local_refinement refined_vertices ARGS ${command} ${ARGN})
+  string(JSON refined GET "${last_json}" local_refinement)
+  string(JSON inserted GET "${last_json}" refined_vertices)
+  if(NOT refined STREQUAL expected OR (NOT refined AND NOT inserted EQUAL 0))
+    message(FATAL_ERROR "prm ${command} ${ARGN}: local_refinement ${refined} (expected ${expected}), ${inserted} "
+                        "vertices inserted:\n${last_json}")
+  endif()
+endfunction()
 # The local refinement (issue 22): the default with a target error at every --effort but 0; --no-local-refinement
 # turns it off, --local-refinement asks for it at effort 0; the two together are a usage error (exit 1).
 foreach(spec "ON|" "OFF|--no-local-refinement" "OFF|--effort;0" "ON|--effort;0;--local-refinement")  # JSON true: ON
   string(REPLACE "|" ";" spec "${spec}")
   list(POP_FRONT spec expected)
-  run_json(pack KEYS local_refinement refined_vertices
-           ARGS pack "${DATA}/cube_quads.obj" -o "${WORK}/cube_refined.prm" --target-error 1e-3 --mode prm ${spec})
-  string(JSON refined GET "${last_json}" local_refinement)
-  string(JSON inserted GET "${last_json}" refined_vertices)
-  if(NOT refined STREQUAL expected OR (NOT refined AND NOT inserted EQUAL 0))
-    message(FATAL_ERROR "prm pack --target-error 1e-3 ${spec}: local_refinement ${refined} (expected ${expected}), "
-                        "${inserted} vertices inserted:\n${last_json}")
-  endif()
+  check_local_refinement(pack ${expected} "${DATA}/cube_quads.obj" -o "${WORK}/cube_refined.prm" --target-error 1e-3
+                         --mode prm ${spec})
 endforeach()
 execute_process(COMMAND "${PRM}" pack "${DATA}/cube_quads.obj" -o "${WORK}/cube_refined.prm" --target-error 1e-3
                         --local-refinement --no-local-refinement RESULT_VARIABLE rc OUTPUT_QUIET ERROR_QUIET)
@@ -126,14 +131,7 @@ endif()
 foreach(spec "ON|--target-error;1e-3" "OFF|--target-error;1e-3;--no-local-refinement" "OFF|--grid-fraction;0.1")
   string(REPLACE "|" ";" spec "${spec}")
   list(POP_FRONT spec expected)
-  run_json(remesh KEYS local_refinement refined_vertices refined_moves
-           ARGS remesh "${DATA}/cube_quads.obj" -o "${WORK}/cube_refined_prm.ply" ${spec})
-  string(JSON refined GET "${last_json}" local_refinement)
-  string(JSON inserted GET "${last_json}" refined_vertices)
-  if(NOT refined STREQUAL expected OR (NOT refined AND NOT inserted EQUAL 0))
-    message(FATAL_ERROR "prm remesh ${spec}: local_refinement ${refined} (expected ${expected}), ${inserted} vertices "
-                        "inserted:\n${last_json}")
-  endif()
+  check_local_refinement(remesh ${expected} "${DATA}/cube_quads.obj" -o "${WORK}/cube_refined_prm.ply" ${spec})
 endforeach()
 run_json(render KEYS input output ${counts} seconds ARGS render "${WORK}/tet.prm" -o "${WORK}/tet.png" --size 64x64)
 
