@@ -120,6 +120,9 @@ struct Measuring {
   // Per grid measured (remesh::RemeshResult::search): measured at full density on the decoded stream itself, the
   // mesh finish_at's check would measure (the same stream decoded: the same Metro result, bit for bit).
   std::vector<bool> decoded_at_full_density;
+  // EffortPlan::decode_in_band for these measurements (refine_remeshed: the refined grid's, so that finish_at knows the
+  // rounded heights' stream at full density, which its check and the heights' guard measure otherwise).
+  bool decode_in_band = false;
 };
 
 remesh::ErrorFunction error_function(const SearchContext& ctx, Measuring& s) {
@@ -133,7 +136,7 @@ remesh::ErrorFunction error_function(const SearchContext& ctx, Measuring& s) {
       if ((e.rms < kSparseBand[0] * s.target_error || e.rms > kSparseBand[1] * s.target_error) && !max_in_band)
         return e;
       // EffortPlan::decode_in_band: the stream encoded and decoded, so that its check can reuse this measurement.
-      const bool encode = !decoded && ctx.plan.decode_in_band;
+      const bool encode = !decoded && (ctx.plan.decode_in_band || s.decode_in_band);
       const auto full_measure = [&](const Mesh& d) { return measure_with(ctx.full, d); };
       const remesh::ErrorEstimate full =
           encode ? encode_and_measure(prm, s.po, nullptr, nullptr, full_measure) : full_measure(m);
@@ -183,6 +186,7 @@ void encode_remeshed(Remeshed& rm) {
 void refine_remeshed(const SearchContext& ctx, Remeshed& rm) {
   if (!rm.out.remesh.deferred) return;
   const auto t0 = std::chrono::steady_clock::now();
+  rm.measuring->decode_in_band = true;
   remesh::refine_deferred(rm.out.remesh, error_function(ctx, *rm.measuring));
   rm.out.seconds_remesh += seconds_since(t0);
   encode_remeshed(rm);
@@ -275,6 +279,10 @@ PackResult finish_at(const SearchContext& ctx, const PackOptions& options, Remes
   const double rounded_max = out.remesh.error.max;
   // EffortPlan::lambda_full_density: the lambda rounds measure at full density, so that the check reuses it.
   const bool lambda_full = ctx.plan.lambda_full_density;
+  // The rounded heights' stream, when its error is known at full density (rm.error_at_full_density): the check and
+  // the heights' guard take that error for a stream of the same bytes instead of measuring it again.
+  const std::vector<uint8_t> rounded_stream = rm.error_at_full_density ? out.stream : std::vector<uint8_t>{};
+  const remesh::ErrorEstimate rounded_error = out.remesh.error;
   auto measure = [&](const Mesh& m) {
     if (lambda_full) return measure_with(ctx.full, m);
     remesh::ErrorEstimate e = measure_with(ctx.search, m);
@@ -415,7 +423,9 @@ PackResult finish_at(const SearchContext& ctx, const PackOptions& options, Remes
     ProgressJob::rounds_left(1);
     auto full_error = [&](codec::PrmOptions& o, std::vector<uint8_t>* stream, codec::EncodeReport* report) {
       size_t za = 0;
-      auto full = [&](const Mesh& m) { return measure_with(ctx.full, m); };
+      auto full = [&](const Mesh& m) {
+        return !rounded_stream.empty() && *stream == rounded_stream ? rounded_error : measure_with(ctx.full, m);
+      };
       const remesh::ErrorEstimate e = encode_facing(o, report, stream, full, &za, nullptr);
       return za > 0 ? remesh::ErrorEstimate{HUGE_VAL, HUGE_VAL} : e;
     };
