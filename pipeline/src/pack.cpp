@@ -120,6 +120,11 @@ struct Measuring {
   // Per grid measured (remesh::RemeshResult::search): measured at full density on the decoded stream itself, the
   // mesh finish_at's check would measure (the same stream decoded: the same Metro result, bit for bit).
   std::vector<bool> decoded_at_full_density;
+  // The stream (and its report) of the last measurement encoded for it (EffortPlan::decode_in_band), by its index
+  // above: encode_remeshed takes it when that grid is kept instead of encoding the same mesh again.
+  size_t encoded_index = SIZE_MAX;
+  std::vector<uint8_t> encoded_stream;
+  codec::EncodeReport encoded_report;
   // EffortPlan::decode_in_band for these measurements (refine_remeshed: the refined grid's, so that finish_at knows the
   // rounded heights' stream at full density, which its check and the heights' guard measure otherwise).
   bool decode_in_band = false;
@@ -138,8 +143,9 @@ remesh::ErrorFunction error_function(const SearchContext& ctx, Measuring& s) {
       // EffortPlan::decode_in_band: the stream encoded and decoded, so that its check can reuse this measurement.
       const bool encode = !decoded && (ctx.plan.decode_in_band || s.decode_in_band);
       const auto full_measure = [&](const Mesh& d) { return measure_with(ctx.full, d); };
+      if (encode) s.encoded_index = s.decoded_at_full_density.size() - 1;
       const remesh::ErrorEstimate full =
-          encode ? encode_and_measure(prm, s.po, nullptr, nullptr, full_measure) : full_measure(m);
+          encode ? encode_and_measure(prm, s.po, &s.encoded_report, &s.encoded_stream, full_measure) : full_measure(m);
       if (e.rms > 0) s.sparse_bias = full.rms / e.rms;
       s.decoded_at_full_density.back() = decoded || encode;
       return full;
@@ -166,11 +172,21 @@ void encode_remeshed(Remeshed& rm) {
   PackResult& out = rm.out;
   // The kept grid's measurement (remesh() copies it into out.remesh.error).
   rm.error_at_full_density = false;
+  size_t kept = SIZE_MAX;
   for (size_t i = 0; i < out.remesh.search.size() && i < s.decoded_at_full_density.size(); ++i)
     if (s.decoded_at_full_density[i] && out.remesh.search[i].grid == out.remesh.prm.lattice.A &&
-        out.remesh.search[i].error.rms == out.remesh.error.rms && out.remesh.search[i].error.max == out.remesh.error.max)
+        out.remesh.search[i].error.rms == out.remesh.error.rms && out.remesh.search[i].error.max == out.remesh.error.max) {
       rm.error_at_full_density = true;
+      kept = i;
+    }
   rm.sparse_bias = s.sparse_bias;
+  out.codec_options = s.po;
+  if (kept == s.encoded_index && !s.encoded_stream.empty()) {
+    out.stream = s.encoded_stream;
+    out.report = s.encoded_report;
+    out.seconds_encode = 0;
+    return;
+  }
   const auto t0 = std::chrono::steady_clock::now();
   auto encoded = encode_prm_mesh(out.remesh.prm, &out.report, s.po);
   out.seconds_encode = seconds_since(t0);
@@ -178,7 +194,6 @@ void encode_remeshed(Remeshed& rm) {
     throw InputError("the piecewise regular mesh could not be encoded (a remesher or codec bug): " +
                      encoded.status.message + " (spec §" + encoded.status.spec_section + ")");
   out.stream = std::move(encoded.value);
-  out.codec_options = s.po;
 }
 
 // RemeshOptions::defer_refinement: the refinement of rm's chosen grid, measured as its search was, and the refined
