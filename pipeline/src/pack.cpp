@@ -91,6 +91,8 @@ remesh::ErrorEstimate encode_and_measure(const remesh::PrmMesh& prm, const codec
   return measure(mesh);
 }
 
+struct Measuring;
+
 // One bit depth and step scale remeshed and encoded (heights rounded, or PackOptions::height_lambda): what
 // finish_at() needs to choose the heights' lambda and check the stream at full density.
 struct Remeshed {
@@ -102,16 +104,116 @@ struct Remeshed {
   // out.remesh.error was measured at full density on out.stream decoded (the kept grid's sparse estimate fell in
   // kSparseBand): finish_at's check needs no second measurement while the stream stays the search's.
   bool error_at_full_density = false;
+  // remesh_at's error function's state, kept for a deferred refinement (RemeshOptions::defer_refinement).
+  std::shared_ptr<Measuring> measuring;
 };
+
+// remesh_at's measurements: the search's grids, then those of its refinement (deferred or not).
+struct Measuring {
+  remesh::QuantFrame frame;  // the stream's
+  codec::PrmOptions po;      // the rounded heights' encoding
+  double target_error = 0, max_error = 0;  // remesh::RemeshOptions'
+  // The error of a decoded candidate: the search's samples decide unless they fall within kSparseBand of the target,
+  // where the full density decides (the sparser samples weigh the vertices more: +0.5% at 4 per face, +4% at 2 on
+  // the horse), so that every decision is the one the full density would make.
+  double sparse_bias = 1;
+  // Per grid measured (remesh::RemeshResult::search): measured at full density on the decoded stream itself, the
+  // mesh finish_at's check would measure (the same stream decoded: the same Metro result, bit for bit).
+  std::vector<bool> decoded_at_full_density;
+  // The stream (and its report) of the last measurement encoded for it (EffortPlan::decode_in_band), by its index
+  // above: encode_remeshed takes it when that grid is kept instead of encoding the same mesh again.
+  size_t encoded_index = SIZE_MAX;
+  std::vector<uint8_t> encoded_stream;
+  codec::EncodeReport encoded_report;
+  // EffortPlan::decode_in_band for these measurements (refine_remeshed: the refined grid's, so that finish_at knows the
+  // rounded heights' stream at full density, which its check and the heights' guard measure otherwise).
+  bool decode_in_band = false;
+};
+
+remesh::ErrorFunction error_function(const SearchContext& ctx, Measuring& s) {
+  return [&ctx, &s](const remesh::PrmMesh& prm) {
+    const MetroReference& reference = ctx.search;
+    // m: the candidate quantized (or decoded, `decoded`) as the stream will hold it.
+    auto measure = [&](const Mesh& m, bool decoded) {
+      remesh::ErrorEstimate e = measure_with(reference, m);
+      if (&reference == &ctx.full) return e;
+      const bool max_in_band = s.max_error > 0 && e.max >= kSparseBand[0] * s.max_error;
+      if ((e.rms < kSparseBand[0] * s.target_error || e.rms > kSparseBand[1] * s.target_error) && !max_in_band)
+        return e;
+      // EffortPlan::decode_in_band: the stream encoded and decoded, so that its check can reuse this measurement.
+      const bool encode = !decoded && (ctx.plan.decode_in_band || s.decode_in_band);
+      const auto full_measure = [&](const Mesh& d) { return measure_with(ctx.full, d); };
+      if (encode) s.encoded_index = s.decoded_at_full_density.size() - 1;
+      const remesh::ErrorEstimate full =
+          encode ? encode_and_measure(prm, s.po, &s.encoded_report, &s.encoded_stream, full_measure) : full_measure(m);
+      if (e.rms > 0) s.sparse_bias = full.rms / e.rms;
+      s.decoded_at_full_density.back() = decoded || encode;
+      return full;
+    };
+    ProgressJob::advance_round();
+    s.decoded_at_full_density.push_back(false);
+    if (s.po.height_lambda > 0)
+      return encode_and_measure(prm, s.po, nullptr, nullptr, [&](const Mesh& m) { return measure(m, true); });
+    const Mesh& candidate = prm.mesh;
+    Mesh q;
+    q.triangles = candidate.triangles;
+    q.positions.resize(candidate.positions.size());
+    for (size_t v = 0; v < q.positions.size(); ++v)
+      for (int a = 0; a < 3; ++a)
+        q.positions[v][static_cast<size_t>(a)] =
+            s.frame.to_real(s.frame.quantize(candidate.positions[v][static_cast<size_t>(a)], a), a);
+    return measure(q, false);
+  };
+}
+
+// The remeshed attempt's kept grid, encoded with rounded heights (rm.measuring: its measurements).
+void encode_remeshed(Remeshed& rm) {
+  const Measuring& s = *rm.measuring;
+  PackResult& out = rm.out;
+  // The kept grid's measurement (remesh() copies it into out.remesh.error).
+  rm.error_at_full_density = false;
+  size_t kept = SIZE_MAX;
+  for (size_t i = 0; i < out.remesh.search.size() && i < s.decoded_at_full_density.size(); ++i)
+    if (s.decoded_at_full_density[i] && out.remesh.search[i].grid == out.remesh.prm.lattice.A &&
+        out.remesh.search[i].error.rms == out.remesh.error.rms && out.remesh.search[i].error.max == out.remesh.error.max) {
+      rm.error_at_full_density = true;
+      kept = i;
+    }
+  rm.sparse_bias = s.sparse_bias;
+  out.codec_options = s.po;
+  if (kept == s.encoded_index && !s.encoded_stream.empty()) {
+    out.stream = s.encoded_stream;
+    out.report = s.encoded_report;
+    out.seconds_encode = 0;
+    return;
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  auto encoded = encode_prm_mesh(out.remesh.prm, &out.report, s.po);
+  out.seconds_encode = seconds_since(t0);
+  if (!encoded.ok())
+    throw InputError("the piecewise regular mesh could not be encoded (a remesher or codec bug): " +
+                     encoded.status.message + " (spec §" + encoded.status.spec_section + ")");
+  out.stream = std::move(encoded.value);
+}
+
+// RemeshOptions::defer_refinement: the refinement of rm's chosen grid, measured as its search was, and the refined
+// grid encoded (nothing when none was deferred).
+void refine_remeshed(const SearchContext& ctx, Remeshed& rm) {
+  if (!rm.out.remesh.deferred) return;
+  const auto t0 = std::chrono::steady_clock::now();
+  rm.measuring->decode_in_band = true;
+  remesh::refine_deferred(rm.out.remesh, error_function(ctx, *rm.measuring));
+  rm.out.seconds_remesh += seconds_since(t0);
+  encode_remeshed(rm);
+}
 
 using StopSearch = std::function<bool(int64_t grid, bool met, int64_t next)>;
 
 // One bit depth and step scale: repair (done by the caller), remesh, encode with rounded heights.
-// stop_search: remesh::RemeshOptions::stop_search.
+// stop_search: remesh::RemeshOptions::stop_search; defer_refinement: RemeshOptions::defer_refinement (refine_remeshed).
 Remeshed remesh_at(const SearchContext& ctx, const PackOptions& options, int bits, double step_scale,
-                   double initial_grid, const StopSearch& stop_search = {}) {
+                   double initial_grid, const StopSearch& stop_search = {}, bool defer_refinement = false) {
   const Mesh& source = ctx.source;
-  const MetroReference& reference = ctx.search;
   PackResult out;
   ProgressJob::stage("remesh");
   auto t0 = std::chrono::steady_clock::now();
@@ -144,11 +246,14 @@ Remeshed remesh_at(const SearchContext& ctx, const PackOptions& options, int bit
   // target.
   ro.max_error = kQuantizationMargin * options.max_error;
   set_refinement(ro, options.target_error, options.max_error, ctx.plan.local_refinement, options.refine_facing_guard);
+  ro.defer_refinement = defer_refinement;
   // The search measures what the decoder will output: the candidate quantized to the stream's frame (its lattice
   // vertices are exact already; the heights and the other vertices round to the nearest step), or, when the
   // encoder may choose the heights, the candidate encoded and decoded.
-  const remesh::QuantFrame frame = remesh::frame_of_mesh(source, bits, step_scale);
-  codec::PrmOptions po;
+  auto measuring = std::make_shared<Measuring>();
+  Measuring& ms = *measuring;
+  ms.frame = remesh::frame_of_mesh(source, bits, step_scale);
+  codec::PrmOptions& po = ms.po;
   if (options.height_lambda > 0) {
     po.height_tolerance = kHeightTolerance;
     po.height_lambda = options.height_lambda;
@@ -158,64 +263,15 @@ Remeshed remesh_at(const SearchContext& ctx, const PackOptions& options, int bit
   po.seam_context = options.max_minor >= codec::kFormatMinorSeam ? -1 : 0;
   po.patch_contexts = options.max_minor >= codec::kFormatMinorPatchContexts;
   po.patch_grids = options.max_minor >= codec::kFormatMinorPatchGrids;
-  // The error of a decoded candidate: the search's samples decide unless they fall within kSparseBand of the target,
-  // where the full density decides (the sparser samples weigh the vertices more: +0.5% at 4 per face, +4% at 2 on
-  // the horse), so that every decision is the one the full density would make.
-  double sparse_bias = 1;
-  // Per grid measured (remesh::RemeshResult::search): measured at full density on the decoded stream itself, the
-  // mesh finish_at's check would measure (the same stream decoded: the same Metro result, bit for bit).
-  std::vector<bool> decoded_at_full_density;
-  // m: the candidate quantized (or decoded, `decoded`) as the stream will hold it.
-  auto measure = [&](const Mesh& m, bool decoded, const remesh::PrmMesh& prm) {
-    remesh::ErrorEstimate e = measure_with(reference, m);
-    if (&reference == &ctx.full) return e;
-    const bool max_in_band = ro.max_error > 0 && e.max >= kSparseBand[0] * ro.max_error;
-    if ((e.rms < kSparseBand[0] * ro.target_error || e.rms > kSparseBand[1] * ro.target_error) && !max_in_band)
-      return e;
-    // EffortPlan::decode_in_band: the stream encoded and decoded, so that its check can reuse this measurement.
-    const bool encode = !decoded && ctx.plan.decode_in_band;
-    const auto full_measure = [&](const Mesh& d) { return measure_with(ctx.full, d); };
-    const remesh::ErrorEstimate full =
-        encode ? encode_and_measure(prm, po, nullptr, nullptr, full_measure) : full_measure(m);
-    if (e.rms > 0) sparse_bias = full.rms / e.rms;
-    decoded_at_full_density.back() = decoded || encode;
-    return full;
-  };
-  auto error = [&](const remesh::PrmMesh& prm) {
-    ProgressJob::advance_round();
-    decoded_at_full_density.push_back(false);
-    if (po.height_lambda > 0)
-      return encode_and_measure(prm, po, nullptr, nullptr, [&](const Mesh& m) { return measure(m, true, prm); });
-    const Mesh& candidate = prm.mesh;
-    Mesh q;
-    q.triangles = candidate.triangles;
-    q.positions.resize(candidate.positions.size());
-    for (size_t v = 0; v < q.positions.size(); ++v)
-      for (int a = 0; a < 3; ++a)
-        q.positions[v][static_cast<size_t>(a)] =
-            frame.to_real(frame.quantize(candidate.positions[v][static_cast<size_t>(a)], a), a);
-    return measure(q, false, prm);
-  };
-  out.remesh = remesh::remesh(source, ro, error);
+  ms.target_error = ro.target_error;
+  ms.max_error = ro.max_error;
+  out.remesh = remesh::remesh(source, ro, error_function(ctx, ms));
   out.seconds_remesh = seconds_since(t0);
-  // The kept grid's measurement (remesh() copies it into out.remesh.error).
-  bool error_at_full_density = false;
-  for (size_t i = 0; i < out.remesh.search.size() && i < decoded_at_full_density.size(); ++i)
-    if (decoded_at_full_density[i] && out.remesh.search[i].grid == out.remesh.prm.lattice.A &&
-        out.remesh.search[i].error.rms == out.remesh.error.rms && out.remesh.search[i].error.max == out.remesh.error.max)
-      error_at_full_density = true;
   out.bits = bits;
   out.step_scale = step_scale;
-
-  t0 = std::chrono::steady_clock::now();
-  auto encoded = encode_prm_mesh(out.remesh.prm, &out.report, po);
-  out.seconds_encode = seconds_since(t0);
-  if (!encoded.ok())
-    throw InputError("the piecewise regular mesh could not be encoded (a remesher or codec bug): " +
-                     encoded.status.message + " (spec §" + encoded.status.spec_section + ")");
-  out.stream = std::move(encoded.value);
-  out.codec_options = po;
-  return Remeshed{std::move(out), ro.target_error, ro.max_error, sparse_bias, error_at_full_density};
+  Remeshed rm{std::move(out), ro.target_error, ro.max_error, 1, false, std::move(measuring)};
+  encode_remeshed(rm);
+  return rm;
 }
 
 // The heights of a remeshed attempt: the lambda bisection (its sparse estimates scaled by rm.sparse_bias), then the
@@ -231,6 +287,10 @@ PackResult finish_at(const SearchContext& ctx, const PackOptions& options, Remes
   const double rounded_max = out.remesh.error.max;
   // EffortPlan::lambda_full_density: the lambda rounds measure at full density, so that the check reuses it.
   const bool lambda_full = ctx.plan.lambda_full_density;
+  // The rounded heights' stream, when its error is known at full density (rm.error_at_full_density): the check and
+  // the heights' guard take that error for a stream of the same bytes instead of measuring it again.
+  const std::vector<uint8_t> rounded_stream = rm.error_at_full_density ? out.stream : std::vector<uint8_t>{};
+  const remesh::ErrorEstimate rounded_error = out.remesh.error;
   auto measure = [&](const Mesh& m) {
     if (lambda_full) return measure_with(ctx.full, m);
     remesh::ErrorEstimate e = measure_with(ctx.search, m);
@@ -389,7 +449,9 @@ PackResult finish_at(const SearchContext& ctx, const PackOptions& options, Remes
     ProgressJob::rounds_left(1);
     auto full_error = [&](codec::PrmOptions& o, std::vector<uint8_t>* stream, codec::EncodeReport* report) {
       size_t za = 0;
-      auto full = [&](const Mesh& m) { return measure_with(ctx.full, m); };
+      auto full = [&](const Mesh& m) {
+        return !rounded_stream.empty() && *stream == rounded_stream ? rounded_error : measure_with(ctx.full, m);
+      };
       const remesh::ErrorEstimate e = encode_facing(o, report, stream, full, &za, nullptr);
       return za > 0 ? remesh::ErrorEstimate{HUGE_VAL, HUGE_VAL} : e;
     };
@@ -712,7 +774,9 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
       try {
         if (plan.defer_heights) {
           ProgressJob::attempt(++attempts);
-          remeshed = std::make_unique<Remeshed>(remesh_at(ctx, options, bits, scale, grid, stop_search));
+          // The local refinement (RemeshOptions::refine_last) only for the attempt kept (refine_remeshed below): the
+          // attempts are compared unrefined.
+          remeshed = std::make_unique<Remeshed>(remesh_at(ctx, options, bits, scale, grid, stop_search, true));
           rounds += remeshed->out.remesh.search.size();
           // The rounded stream must keep every triangle's area (finish_at would refuse the attempt).
           const auto decoded = codec::decode(remeshed->out.stream.data(), remeshed->out.stream.size());
@@ -840,6 +904,17 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
       auto tried = std::move(out.tried);
       bool measured = true;
       const auto t1 = std::chrono::steady_clock::now();
+      if (best_remeshed->out.remesh.deferred) {
+        // Its refinement; a refined stream that loses a triangle's area (which the attempt's check would have
+        // refused) gives way to the unrefined one.
+        Remeshed refined = *best_remeshed;
+        refine_remeshed(ctx, refined);
+        rounds += refined.out.remesh.search.size() - best_remeshed->out.remesh.search.size();
+        const auto decoded = codec::decode(refined.out.stream.data(), refined.out.stream.size());
+        if (!decoded.ok())
+          throw InputError("the encoder's stream does not decode (a codec bug): " + decoded.status.message);
+        if (count_zero_area_triangles(decoded.value) == 0) *best_remeshed = std::move(refined);
+      }
       out = finish_at(ctx, options, std::move(*best_remeshed), &measured);
       if (!measured) {
         // One step (as pack_one would): again from the grid its search started from; several: from the best grid.

@@ -108,6 +108,50 @@ TEST(LocalRefinement, RefineLastRefinesOnlyTheChosenGrid) {
   }
 }
 
+// RemeshOptions::defer_refinement (pack's effort 3 refines only the attempt it keeps, issue 21): remesh() returns the
+// search's unrefined choice with the refinement left in RemeshResult::deferred, and refine_deferred() then gives the
+// result, search steps and measurements that remesh() without deferral gives.
+TEST(LocalRefinement, DeferredRefinementIsTheRefinementRemeshMakes) {
+  const prm::Mesh input = shared_mesh("feline_5k.obj");
+  prm::remesh::ReliefOptions ro;
+  ro.view_properties = false;
+  const prm::remesh::ReliefLayout layout = prm::remesh::build_reliefs(input, ro);
+  prm::remesh::RemeshOptions o;
+  o.layout = &layout;
+  o.bits = 11;
+  o.target_error = 5e-4;
+  o.refine_error = 3.4e-3;
+  o.refine_last = true;
+  size_t measured = 0;
+  const auto error = [&](const prm::remesh::PrmMesh& candidate) {
+    ++measured;
+    const prm::DistanceReport d = prm::metro_distance(input, candidate.mesh);
+    return prm::remesh::ErrorEstimate{d.rel(d.rms), d.rel(d.max)};
+  };
+  const prm::remesh::RemeshResult once = prm::remesh::remesh(input, o, error);
+  const size_t measured_once = measured;
+  EXPECT_EQ(once.deferred, nullptr);
+  o.defer_refinement = true;
+  measured = 0;
+  prm::remesh::RemeshResult later = prm::remesh::remesh(input, o, error);
+  ASSERT_NE(later.deferred, nullptr);
+  EXPECT_EQ(later.prm.stats.deviation_inserts, 0u);  // the search's unrefined choice
+  EXPECT_LT(later.search.size(), once.search.size());
+  prm::remesh::refine_deferred(later, error);
+  EXPECT_EQ(later.deferred, nullptr);
+  EXPECT_EQ(measured, measured_once);
+  ASSERT_EQ(later.search.size(), once.search.size());
+  for (size_t i = 0; i < once.search.size(); ++i) {
+    EXPECT_EQ(later.search[i].grid, once.search[i].grid);
+    EXPECT_EQ(later.search[i].vertices, once.search[i].vertices);
+    EXPECT_EQ(later.search[i].error.rms, once.search[i].error.rms);
+  }
+  EXPECT_GT(later.prm.stats.deviation_inserts, 0u);
+  EXPECT_EQ(later.error.rms, once.error.rms);
+  EXPECT_EQ(later.prm.mesh.triangles, once.prm.mesh.triangles);
+  EXPECT_EQ(later.prm.mesh.positions, once.prm.mesh.positions);
+}
+
 // The cause of the worst case (bench/README.md "Worst-case error"): the horse's tail and ears are thin sheets the
 // hexagonal resampling cuts off. At the grid a 2e-4 pack chooses (11 bits, step x1.414, 0.007 of the diagonal), the
 // refinement at 6.8x that target with its thin-sheet steps must leave a lower max than the same refinement without

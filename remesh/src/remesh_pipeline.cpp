@@ -46,7 +46,59 @@ double mean_edge_length(const Mesh& m) {
   return n ? sum / static_cast<double>(n) : 0;
 }
 
+// A remeshed grid measured (when `error` is given) as a search step.
+SearchStep search_step(const PrmMesh& prm, double step, const ErrorFunction& error,
+                       std::chrono::steady_clock::time_point ts) {
+  SearchStep s;
+  s.grid = static_cast<int64_t>(prm.lattice.A);
+  s.grid_size = static_cast<double>(s.grid) * step;
+  s.vertices = prm.stats.vertices;
+  s.regular_share = prm.stats.faces ? static_cast<double>(prm.stats.regular_faces) / prm.stats.faces : 0;
+  if (error) s.error = error(prm);
+  s.seconds = seconds_since(ts);
+  return s;
+}
+
+// ResampleOptions::grid and relief_grid for grid g (RemeshOptions::relief_grid_scale).
+void set_grid(ResampleOptions& ro, int64_t grid, const std::vector<double>& relief_grid_scale, int64_t coarsest) {
+  ro.grid = grid;
+  ro.relief_grid.clear();
+  for (double s : relief_grid_scale)
+    ro.relief_grid.push_back(std::clamp<int64_t>(std::llround(static_cast<double>(grid) * s), 2, coarsest));
+}
+
 }  // namespace
+
+// RemeshOptions::refine_last: the grids to refine, in order, with the search's unrefined PRMs of those it made.
+struct DeferredRefinement {
+  std::vector<int> axes;  // in.relief_axis
+  LayoutInput in;
+  ResampleOptions ro;     // max_deviation: the refinement's bound
+  std::vector<double> relief_grid_scale;
+  int64_t coarsest = 0;
+  double target_error = 0;
+  std::vector<int64_t> grids;
+  std::map<int64_t, PrmMesh> fitted;
+};
+
+void refine_deferred(RemeshResult& result, const ErrorFunction& error) {
+  if (!result.deferred) return;
+  const DeferredRefinement& d = *result.deferred;
+  ResampleOptions ro = d.ro;
+  for (int64_t g : d.grids) {
+    const auto ts = std::chrono::steady_clock::now();
+    set_grid(ro, g, d.relief_grid_scale, d.coarsest);
+    const auto it = d.fitted.find(g);
+    PrmMesh prm = it != d.fitted.end() ? finish_resampled(it->second, d.in, ro) : resample_and_merge(d.in, ro);
+    result.search.push_back(search_step(prm, ro.frame.step, error, ts));
+    if (result.search.back().error.rms / d.target_error <= 1) {
+      result.prm = std::move(prm);
+      result.error = result.search.back().error;
+      break;
+    }
+  }
+  result.deferred.reset();
+}
 
 RemeshResult remesh(const Mesh& input, const RemeshOptions& options, const ErrorFunction& error) {
   const auto t0 = std::chrono::steady_clock::now();
@@ -134,32 +186,16 @@ RemeshResult remesh(const Mesh& input, const RemeshOptions& options, const Error
       if (!(s > 0 && s < 1e3)) throw std::invalid_argument("remesh: a relief grid scale must be in (0, 1000)");
   }
   // A remeshed grid measured and recorded as a search step.
-  auto measured = [&](PrmMesh prm, std::chrono::steady_clock::time_point ts) {
-    SearchStep step;
-    step.grid = static_cast<int64_t>(prm.lattice.A);
-    step.grid_size = static_cast<double>(step.grid) * ro.frame.step;
-    step.vertices = prm.stats.vertices;
-    step.regular_share = prm.stats.faces ? static_cast<double>(prm.stats.regular_faces) / prm.stats.faces : 0;
-    if (error) step.error = error(prm);
-    step.seconds = seconds_since(ts);
-    result.search.push_back(step);
-    return prm;
-  };
   // refine_last: each search step's PRM before the refinement, by grid (the refinement then starts from there).
   std::map<int64_t, PrmMesh> fitted;
-  auto set_grid = [&](int64_t grid) {
-    ro.grid = grid;
-    ro.relief_grid.clear();
-    for (double s : options.relief_grid_scale)
-      ro.relief_grid.push_back(std::clamp<int64_t>(std::llround(static_cast<double>(grid) * s), 2, coarsest));
-  };
   auto attempt = [&](int64_t grid) {
     const auto ts = std::chrono::steady_clock::now();
-    set_grid(grid);
-    ro.fitted = refine_last && ro.max_deviation <= 0 ? &fitted[grid] : nullptr;
+    set_grid(ro, grid, options.relief_grid_scale, coarsest);
+    ro.fitted = refine_last ? &fitted[grid] : nullptr;
     PrmMesh prm = resample_and_merge(in, ro);
     ro.fitted = nullptr;
-    return measured(std::move(prm), ts);
+    result.search.push_back(search_step(prm, ro.frame.step, error, ts));
+    return prm;
   };
 
   if (!searched) {
@@ -245,35 +281,31 @@ RemeshResult remesh(const Mesh& input, const RemeshOptions& options, const Error
     throw TargetNotReached("remesh: no grid size reached the target error " + std::to_string(options.target_error) +
                            (options.max_error > 0 ? " (max " + std::to_string(options.max_error) + ")" : "") +
                              " in " + std::to_string(options.max_search_steps) + " steps");
-  if (refine_last) {
-    // The refinement lowers the RMS a little: the next coarser grid first when it missed the target unrefined by at
-    // most kRefineLastMargin, then the chosen grid, then the next finer ones, until one refined meets the target.
-    ro.max_deviation = refine_deviation;
-    std::vector<int64_t> grids;
-    for (const SearchStep& st : result.search)
-      if (st.grid == best_grid + 1 && severity(st.error) <= kRefineLastMargin * target) grids = {best_grid + 1};
-    for (int64_t g = best_grid; g >= finest && grids.size() < static_cast<size_t>(kRefineLastTries); --g)
-      grids.push_back(g);
-    for (int64_t g : grids) {
-      const auto it = fitted.find(g);
-      PrmMesh prm;
-      if (it != fitted.end()) {
-        const auto ts = std::chrono::steady_clock::now();
-        set_grid(g);
-        prm = measured(finish_resampled(it->second, in, ro), ts);
-      } else {
-        prm = attempt(g);
-      }
-      if (severity(result.search.back().error) <= target) {
-        best = std::move(prm);
-        result.error = result.search.back().error;
-        break;
-      }
-    }
-  }
   result.prm = std::move(best);
   result.error_measured = true;
   (void)best_error;
+  if (refine_last) {
+    // The refinement lowers the RMS a little: the next coarser grid first when it missed the target unrefined by at
+    // most kRefineLastMargin, then the chosen grid, then the next finer ones, until one refined meets the target
+    // (none: the unrefined choice stays).
+    auto d = std::make_shared<DeferredRefinement>();
+    d->axes = axes;
+    d->in = in;
+    d->in.relief_axis = &d->axes;
+    d->ro = ro;
+    d->ro.max_deviation = refine_deviation;
+    d->relief_grid_scale = options.relief_grid_scale;
+    d->coarsest = coarsest;
+    d->target_error = options.target_error;
+    for (const SearchStep& st : result.search)
+      if (st.grid == best_grid + 1 && severity(st.error) <= kRefineLastMargin * target) d->grids = {best_grid + 1};
+    for (int64_t g = best_grid; g >= finest && d->grids.size() < static_cast<size_t>(kRefineLastTries); --g)
+      d->grids.push_back(g);
+    for (int64_t g : d->grids)
+      if (const auto it = fitted.find(g); it != fitted.end()) d->fitted.emplace(g, std::move(it->second));
+    result.deferred = std::move(d);
+    if (!options.defer_refinement || !options.layout) refine_deferred(result, error);
+  }
   result.seconds_total = seconds_since(t0);
   return result;
 }

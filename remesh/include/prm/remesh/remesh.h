@@ -3,6 +3,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <stdexcept>
 #include <vector>
 
@@ -36,6 +37,10 @@ struct RemeshOptions {
   // target; none: the unrefined choice). Issue 21's CPU budget: the refinement at every search step
   // cost 5-22 s CPU on the paper's models (h22max5, bench/README.md "Worst-case error"). false: every step refined.
   bool refine_last = false;
+  // With refine_last and a layout: the refinement of the chosen grid is left to refine_deferred()
+  // (RemeshResult::deferred), so that a caller comparing several searches refines only the one it keeps (pack's
+  // effort 3: the predicted step and the next coarser one, issue 21). remesh() returns the unrefined choice.
+  bool defer_refinement = false;
   double initial_grid_size = 0;  // with target_error: where the search starts (model units; 0: 1.5 mean edges)
   // A grid size per relief (spec §8.4.2, format 1.5): relief r (an id of the layout) is resampled with the grid
   // round(g x relief_grid_scale[r]) quantization steps (at least 2, at most 2^bits), g being the grid of the options
@@ -100,6 +105,9 @@ struct SearchStep {
   double seconds = 0;
 };
 
+// RemeshOptions::defer_refinement: what the refinement after the search needs (remesh_pipeline.cpp).
+struct DeferredRefinement;
+
 struct RemeshResult {
   PrmMesh prm;
   ErrorEstimate error;              // of the returned mesh (measured when an error function was given)
@@ -108,6 +116,8 @@ struct RemeshResult {
   size_t reliefs = 0;
   double relief_boundary_length = 0;
   double seconds_reliefs = 0, seconds_total = 0;
+  // RemeshOptions::defer_refinement: the refinement still to do (refine_deferred); null when done or none.
+  std::shared_ptr<const DeferredRefinement> deferred;
 };
 
 constexpr size_t kMinVertexBudget = size_t{1} << 18;
@@ -140,5 +150,10 @@ class VertexBudgetExceeded : public TargetNotReached {
 // with no neighbour, its vertices never move; issue 22), whose coordinates pass check_remesh_range()
 // (prm::InputError otherwise). `error` may be empty unless target_error is set.
 RemeshResult remesh(const Mesh& input, const RemeshOptions& options, const ErrorFunction& error = {});
+
+// RemeshOptions::defer_refinement: the refinement remesh() left in result.deferred, with the same error function's
+// measurements as remesh() would have made (appended to result.search); result.deferred is reset. The input and
+// the layout given to remesh() must still be alive.
+void refine_deferred(RemeshResult& result, const ErrorFunction& error);
 
 }  // namespace prm::remesh
