@@ -11,7 +11,8 @@
 //   refined the remesh's mesh with the local refinement at --refine R (fraction of the diagonal), rounded
 //   refunr  the same before the rounding (what the refinement itself leaves; refunr < R < refined: the rounding)
 // Usage: prm_bench_max_error_sites MESH TARGET_ERROR [K] [--max-error E] [--refine R] [--[no-]local-refinement]
-// (--max-error and --[no-]local-refinement: the options of the pack whose stream is the "decoded" stage; without
+//        [--effort N] [--bits B] [--step-scale S]
+// (--max-error, --[no-]local-refinement, --effort, --bits, --step-scale: the options of the pack whose stream is the "decoded" stage; without
 // them, pack's defaults)
 #include <algorithm>
 #include <cmath>
@@ -90,7 +91,8 @@ double crease_near(const Mesh& m, const std::vector<std::vector<uint32_t>>& vert
 
 int main(int argc, char** argv) {
   if (argc < 3) {
-    std::fprintf(stderr, "usage: %s MESH TARGET_ERROR [K] [--max-error E] [--refine R] [--[no-]local-refinement]\n",
+    std::fprintf(stderr, "usage: %s MESH TARGET_ERROR [K] [--max-error E] [--refine R] [--[no-]local-refinement]\n"
+                 "  [--effort N] [--bits B] [--step-scale S]\n",
                  argv[0]);
     return 1;
   }
@@ -104,6 +106,9 @@ int main(int argc, char** argv) {
     else if (a == "--refine" && i + 1 < argc) refine = std::atof(argv[++i]);
     else if (a == "--local-refinement") po.local_refinement = prm::pipeline::PackOptions::LocalRefinement::on;
     else if (a == "--no-local-refinement") po.local_refinement = prm::pipeline::PackOptions::LocalRefinement::off;
+    else if (a == "--effort" && i + 1 < argc) po.effort = std::atoi(argv[++i]);
+    else if (a == "--bits" && i + 1 < argc) po.bits = std::atoi(argv[++i]);
+    else if (a == "--step-scale" && i + 1 < argc) po.step_scale = std::atof(argv[++i]);
     else k = static_cast<size_t>(std::atoi(argv[i]));
   }
   Mesh input = prm::read_mesh(argv[1]);
@@ -128,6 +133,8 @@ int main(int argc, char** argv) {
     ro.grid_size = grid;
     ro.fit_heights = fit;
     ro.error_flip_weight = flip_weight;
+    // The refinement as pack runs it (set_refinement: the notch steps, the facing guard), at the bound R.
+    if (refine > 0) prm::pipeline::set_refinement(ro, po.target_error, po.max_error, true, true);
     ro.refine_error = refine;
     Stage s;
     s.name = name;
