@@ -30,16 +30,22 @@ prm::DistanceReport decoded_distance(const prm::Mesh& input, const prm::pipeline
 
 prm::Mesh shared_mesh(const char* file) { return prm::read_mesh(std::string(PRM_SHARED_MESHES) + "/" + file); }
 
+// `file` packed with o, its decoded stream measured against it (and printed).
+prm::DistanceReport packed_distance(const char* file, const PackOptions& o) {
+  const prm::Mesh input = shared_mesh(file);
+  const prm::pipeline::PackResult r = prm::pipeline::pack(input, o);
+  const prm::DistanceReport d = decoded_distance(input, r);
+  std::printf("%s at target %.3g, max %.3g: %zu bytes, RMS %.3e, max %.3e\n", file, o.target_error, o.max_error,
+              r.stream.size(), d.rel(d.rms), d.rel(d.max));
+  return d;
+}
+
 #ifndef PRM_PACK_MAX_ERROR_HEAVY
 
 TEST(PackMaxError, MaxErrorAloneIsMetByTheDecodedStream) {
-  const prm::Mesh input = shared_mesh("spot.obj");
   PackOptions o;
   o.max_error = 4e-3;
-  const prm::pipeline::PackResult r = prm::pipeline::pack(input, o);
-  const prm::DistanceReport d = decoded_distance(input, r);
-  std::printf("spot with max 4e-3 alone: %zu bytes, RMS %.3e, max %.3e\n", r.stream.size(), d.rel(d.rms),
-              d.rel(d.max));
+  const prm::DistanceReport d = packed_distance("spot.obj", o);
   EXPECT_LE(d.rel(d.max), o.max_error);
 }
 
@@ -225,14 +231,10 @@ TEST(LocalRefinement, SeparationKeepsVenusKnifeEdgeOnTheInput) {
 #else
 
 TEST(PackMaxErrorHeavy, MaxErrorWithTargetErrorIsMetByTheDecodedStream) {
-  const prm::Mesh input = shared_mesh("feline_5k.obj");
   PackOptions o;
   o.target_error = 5e-4;
   o.max_error = 3e-3;  // the default pack of this mesh at 5e-4 reaches 3.8e-3 (bench/README.md "Worst-case error")
-  const prm::pipeline::PackResult r = prm::pipeline::pack(input, o);
-  const prm::DistanceReport d = decoded_distance(input, r);
-  std::printf("feline_5k at 5e-4 with max 3e-3: %zu bytes, RMS %.3e, max %.3e\n", r.stream.size(), d.rel(d.rms),
-              d.rel(d.max));
+  const prm::DistanceReport d = packed_distance("feline_5k.obj", o);
   EXPECT_LE(d.rel(d.rms), o.target_error);
   EXPECT_LE(d.rel(d.max), o.max_error);
 }  // about 22 CPU s (the search goes to a finer grid)
@@ -241,14 +243,10 @@ TEST(PackMaxErrorHeavy, MaxErrorWithTargetErrorIsMetByTheDecodedStream) {
 constexpr double kHorseMaxError = 1.6e-3;
 
 TEST(PackMaxErrorHeavy, HorseMaxErrorIsMet) {
-  const prm::Mesh input = shared_mesh("horse.ply");
   PackOptions o;
   o.target_error = 2e-4;
   o.max_error = kHorseMaxError;
-  const prm::pipeline::PackResult r = prm::pipeline::pack(input, o);
-  const prm::DistanceReport d = decoded_distance(input, r);
-  std::printf("horse at 2e-4 with max %.3g: %zu bytes, RMS %.3e, max %.3e\n", o.max_error, r.stream.size(),
-              d.rel(d.rms), d.rel(d.max));
+  const prm::DistanceReport d = packed_distance("horse.ply", o);
   EXPECT_LE(d.rel(d.rms), o.target_error);
   EXPECT_LE(d.rel(d.max), o.max_error);
 }
@@ -256,12 +254,9 @@ TEST(PackMaxErrorHeavy, HorseMaxErrorIsMet) {
 // The default pack (the local refinement on at the default effort, hdefault): the horse at 2e-4 within 8x the
 // target (7.48x; 24.99x with --no-local-refinement, bench/README.md "Worst-case error").
 TEST(PackMaxErrorHeavy, DefaultPackKeepsTheHorseWithin8x) {
-  const prm::Mesh input = shared_mesh("horse.ply");
   PackOptions o;
   o.target_error = 2e-4;
-  const prm::pipeline::PackResult r = prm::pipeline::pack(input, o);
-  const prm::DistanceReport d = decoded_distance(input, r);
-  std::printf("horse at 2e-4, default: %zu bytes, RMS %.3e, max %.3e\n", r.stream.size(), d.rel(d.rms), d.rel(d.max));
+  const prm::DistanceReport d = packed_distance("horse.ply", o);
   EXPECT_LE(d.rel(d.rms), o.target_error);
   EXPECT_LE(d.rel(d.max), prm::pipeline::kDefaultMaxErrorPerTarget * o.target_error);
 }
@@ -272,13 +267,9 @@ TEST(PackMaxErrorHeavy, DefaultPackKeepsTheHorseWithin8x) {
 // brings the missed point nearer: 11.55x -> 10.96x the target (still over 8x: bench/README.md "Worst-case error",
 // hnine). The bound below fails without it.
 TEST(PackMaxErrorHeavy, HorseTailTipComesNearerAtOnePointThreeEMinus4) {
-  const prm::Mesh input = shared_mesh("horse.ply");
   PackOptions o;
   o.target_error = 1.3e-4;
-  const prm::pipeline::PackResult r = prm::pipeline::pack(input, o);
-  const prm::DistanceReport d = decoded_distance(input, r);
-  std::printf("horse at 1.3e-4, default: %zu bytes, RMS %.3e, max %.3e (%.2fx)\n", r.stream.size(), d.rel(d.rms),
-              d.rel(d.max), d.rel(d.max) / o.target_error);
+  const prm::DistanceReport d = packed_distance("horse.ply", o);
   EXPECT_LE(d.rel(d.rms), o.target_error);
   EXPECT_LE(d.rel(d.max), 11.2 * o.target_error);
 }
