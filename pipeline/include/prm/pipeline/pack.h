@@ -190,6 +190,11 @@ struct EffortPlan {
   // for a 50k-vertex model) the refinement alone would use up (3-5 s on the paper's models, bench/README.md
   // "Worst-case error").
   bool local_refinement = true;
+  // With the local refinement and defer_heights: when the kept attempt's refined stream passes
+  // kDefaultMaxErrorPerTarget x the target (its full-density max), at most this many of the search's other attempts
+  // (smallest unrefined stream first) are refined and their heights chosen, until one meets the target and the
+  // bound (hsearch). Without defer_heights every attempt was refined already: the smallest within the bound is kept.
+  int bound_candidates = 2;
 };
 EffortPlan effort_plan(int effort);  // throws std::invalid_argument outside kMinEffort..kMaxEffort
 // Whether pack refines locally without max_error (PackOptions::local_refinement resolved by options.effort's plan).
@@ -234,6 +239,9 @@ struct PackResult {
   };
   std::vector<Trial> tried;     // every (bit depth, step scale) the search tried and its stream's size
   size_t remesh_rounds = 0;     // grids remeshed by the whole search
+  // The search's choice passed kDefaultMaxErrorPerTarget x the target (the local refinement's bound): which attempt
+  // was kept instead and why (EffortPlan::bound_candidates); empty otherwise.
+  std::string search_note;
   Mesh repaired_input;          // what was remeshed when `repaired` (the input itself otherwise, not copied)
   double seconds_repair = 0, seconds_remesh = 0, seconds_encode = 0;
 
