@@ -969,6 +969,7 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
       auto tried = std::move(out.tried);
       const PackResult::Trial first{out.bits, out.step_scale, out.stream.size()};
       const double first_max = out.remesh.error.max;
+      const int64_t first_grid = out.remesh.prm.lattice.A;
       std::vector<PackResult> refined = std::move(finished_others);  // each met the RMS target at full density
       refined.push_back(std::move(out));
       const auto within = [&](const PackResult& r) { return r.remesh.error.max <= bound; };
@@ -995,20 +996,22 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
           if (pick == SIZE_MAX || refined[i].stream.size() < refined[pick].stream.size()) pick = i;
       out = std::move(refined[pick]);
       out.tried = std::move(tried);
-      const auto frame = [&](int bits, double scale, size_t bytes, double max) {
+      const auto frame = [&](int bits, double scale, int64_t grid, size_t bytes, double max) {
         char b[160];
-        std::snprintf(b, sizeof b, "%d bits, step scale %.4g (%zu B, max %.2fx the target)", bits, scale, bytes,
-                      max / options.target_error);
+        std::snprintf(b, sizeof b, "%d bits, step scale %.4g, grid %lld steps (%zu B, max %.2fx the target)", bits,
+                      scale, static_cast<long long>(grid), bytes, max / options.target_error);
         return std::string(b);
+      };
+      const auto frame_of = [&](const PackResult& r) {
+        return frame(r.bits, r.step_scale, r.remesh.prm.lattice.A, r.stream.size(), r.remesh.error.max);
       };
       std::string others;
       for (size_t i = 0; i < refined.size(); ++i)
         if (i != pick)
-          others += "; " + frame(refined[i].bits, refined[i].step_scale, refined[i].stream.size(),
-                                 refined[i].remesh.error.max);
-      out.search_note = "the search's choice, " + frame(first.bits, first.step_scale, first.bytes, first_max) +
+          others += "; " + frame_of(refined[i]);
+      out.search_note = "the search's choice, " + frame(first.bits, first.step_scale, first_grid, first.bytes, first_max) +
                         ", passes the " + std::to_string(static_cast<int>(kDefaultMaxErrorPerTarget)) + "x bound; kept " +
-                        frame(out.bits, out.step_scale, out.stream.size(), out.remesh.error.max) +
+                        frame_of(out) +
                         (met_bound ? ", the smallest within the bound" : ", the smallest: none is within the bound") +
                         " (" + std::to_string(refined.size()) + " attempts refined" + others + ")";
       seconds += seconds_since(t1);

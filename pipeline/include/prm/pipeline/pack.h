@@ -54,7 +54,13 @@ const char* pack_mode_name(PackMode mode);  // "prm", "general", "auto" (the --m
 // refines at kLocalRefineShare x kDefaultMaxErrorPerTarget x target_error, and the search runs unrefined and refines
 // only the grid it chooses (RemeshOptions::refine_last: issue 21's CPU budget). When the heights' lambda gives a
 // stream over 8x the target, a smaller one that meets both is taken (finish_at; at most kHeightGuardTries of them,
-// then the rounded heights: pipeline/src/height_guard.h). With max_error the refinement runs without its notch steps
+// then the rounded heights: pipeline/src/height_guard.h). When the attempt the search keeps (bit depth, step scale)
+// still passes 8x the target once refined (its full-density max), the smallest of its other attempts that meets the
+// target and 8x is kept instead (EffortPlan::bound_candidates; the smallest refined one when none does;
+// PackResult::search_note says which and why), and the exhaustive search also tries the predicted step
+// (kStepPerTargetError), so that it keeps no larger stream than effort 3's first step (hsearch, bench/README.md
+// "Worst-case error": the horse at 2e-4, effort 9 5,826 B 12.41x -> 5,490 B 7.48x, effort 4 5,623 B 10.92x -> 5,490
+// B 7.48x; at 1.3e-4 none of the attempts is within 8x). With max_error the refinement runs without its notch steps
 // (RemeshOptions::refine_notches). With refine_facing_guard (the default) no refinement step, rounding or heights'
 // lambda turns a triangle away from the input. Measured at 2e-4 (bench/README.md "Worst-case error", hdefault): the
 // max from 10.2-29x the target to 6.6-7.5x on the paper's models and three CGAL meshes, for -1.0% to +3.6% bytes and
