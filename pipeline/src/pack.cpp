@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <cstdio>
 #include <functional>
 #include <cmath>
 #include <stdexcept>
@@ -767,6 +768,15 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
     // heights are chosen (finish_at) once the search is over.
     std::unique_ptr<Remeshed> best_remeshed;
     double best_initial_grid = 0;  // the grid the best attempt's search started from
+    // The bound of the local refinement without max_error (kDefaultMaxErrorPerTarget x the target): the attempts not
+    // kept, for when the kept one's refined stream passes it (choose_within_bound).
+    const bool bound_check = plan.local_refinement && !(options.max_error > 0) && options.target_error > 0;
+    std::vector<PackResult> finished_others;                 // without defer_heights: refined, heights chosen
+    std::vector<std::unique_ptr<Remeshed>> remeshed_others;  // with defer_heights: unrefined
+    auto keep_other = [&](PackResult&& r, std::unique_ptr<Remeshed>&& remeshed) {
+      if (remeshed) remeshed_others.push_back(std::move(remeshed));
+      else finished_others.push_back(std::move(r));
+    };
     auto attempt = [&](int bits, double scale, const StopSearch& stop_search = {}) {
       const double initial_grid = grid;
       PackResult r;
@@ -796,8 +806,12 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
       seconds += r.seconds_remesh + r.seconds_encode;
       out.tried.push_back({bits, scale, r.stream.size()});
       grid = static_cast<double>(r.remesh.prm.lattice.A) * r.remesh.prm.frame.step;
-      if (have && r.stream.size() >= out.stream.size()) return Outcome::larger;
+      if (have && r.stream.size() >= out.stream.size()) {
+        if (bound_check) keep_other(std::move(r), std::move(remeshed));
+        return Outcome::larger;
+      }
       auto tried = std::move(out.tried);
+      if (bound_check && have) keep_other(std::move(out), std::move(best_remeshed));
       out = std::move(r);
       out.tried = std::move(tried);
       best_remeshed = std::move(remeshed);
@@ -805,6 +819,14 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
       have = true;
       ProgressJob::best_bytes(out.stream.size());
       return Outcome::smaller;
+    };
+    // The step predicted from the target (kStepPerTargetError): its ladder position (step_at).
+    const int lowest = 8 * kMinPackBits - 7, highest = 8 * kMaxPackBits;
+    const auto predicted_p = [&] {
+      const remesh::QuantFrame unit = remesh::frame_of_mesh(source, kMinPackBits, 1.0);
+      const double extent = unit.step * static_cast<double>((1 << kMinPackBits) - 1);
+      const double wanted = kStepPerTargetError * predicted_error * reference.diagonal();
+      return std::clamp(static_cast<int>(std::lround(-8.0 * std::log2(wanted / extent))), lowest, highest);
     };
     if (plan.exhaustive) {
       // From 12 bits down while the stream shrinks (up from 12 while the target is out of reach).
@@ -822,16 +844,22 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
           grid = best_grid;
           attempt(b, s);
         }
+        // The predicted step (the first of the searches below kMaxEffort - 1) when the ladder above passed it by (a
+        // step between two bit depths): so that the exhaustive search keeps no larger stream than effort 3's first
+        // step (hsearch: the horse at 2e-4, effort 3's 11 bits x1.414 between effort 9's 11 and 10 bits).
+        const Step predicted = step_at(predicted_p());
+        const bool tried = std::any_of(out.tried.begin(), out.tried.end(), [&](const PackResult::Trial& t) {
+          return t.bits == predicted.bits && std::abs(t.step_scale / predicted.scale - 1) < 1e-9;
+        });
+        if (!tried) {
+          grid = best_grid;
+          attempt(predicted.bits, predicted.scale);
+        }
       }
     } else {
       // The step predicted from the target (kStepPerTargetError), then its neighbours an eighth of an octave apart,
       // nearest the best so far first, each grid search starting from the best grid.
-      const remesh::QuantFrame unit = remesh::frame_of_mesh(source, kMinPackBits, 1.0);
-      const double extent = unit.step * static_cast<double>((1 << kMinPackBits) - 1);
-      const double wanted = kStepPerTargetError * predicted_error * reference.diagonal();
-      const int lowest = 8 * kMinPackBits - 7, highest = 8 * kMaxPackBits;
-      auto clamp_p = [&](int p) { return std::clamp(p, lowest, highest); };
-      int best_p = clamp_p(static_cast<int>(std::lround(-8.0 * std::log2(wanted / extent))));
+      int best_p = predicted_p();
       std::vector<int> tried_p;
       auto untried = [&](int p) {
         return p >= lowest && p <= highest && std::find(tried_p.begin(), tried_p.end(), p) == tried_p.end();
@@ -896,6 +924,23 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
     if (!have)
       throw remesh::TargetNotReached("no grid size reached the target error " + std::to_string(options.target_error) +
                                      " at 12 to " + std::to_string(kMaxPackBits) + " bits");
+    // An attempt's deferred refinement; a refined stream that loses a triangle's area (which the attempt's check
+    // would have refused) gives way to the unrefined one.
+    const auto refine_attempt = [&](Remeshed& rm) {
+      if (!rm.out.remesh.deferred) return;
+      Remeshed refined = rm;
+      refine_remeshed(ctx, refined);
+      rounds += refined.out.remesh.search.size() - rm.out.remesh.search.size();
+      const auto decoded = codec::decode(refined.out.stream.data(), refined.out.stream.size());
+      if (!decoded.ok())
+        throw InputError("the encoder's stream does not decode (a codec bug): " + decoded.status.message);
+      if (count_zero_area_triangles(decoded.value) == 0) rm = std::move(refined);
+    };
+    // An attempt's entry in `tried`: its stream's final size (the others' are their rounded heights' sizes).
+    const auto final_bytes = [](std::vector<PackResult::Trial>& tried, const PackResult& r) {
+      for (PackResult::Trial& t : tried)
+        if (t.bits == r.bits && t.step_scale == r.step_scale) t.bytes = r.stream.size();
+    };
     if (best_remeshed) {
       // The best attempt's heights; where its full-density check misses, the attempt again at full density.
       const int bits = out.bits;
@@ -904,17 +949,7 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
       auto tried = std::move(out.tried);
       bool measured = true;
       const auto t1 = std::chrono::steady_clock::now();
-      if (best_remeshed->out.remesh.deferred) {
-        // Its refinement; a refined stream that loses a triangle's area (which the attempt's check would have
-        // refused) gives way to the unrefined one.
-        Remeshed refined = *best_remeshed;
-        refine_remeshed(ctx, refined);
-        rounds += refined.out.remesh.search.size() - best_remeshed->out.remesh.search.size();
-        const auto decoded = codec::decode(refined.out.stream.data(), refined.out.stream.size());
-        if (!decoded.ok())
-          throw InputError("the encoder's stream does not decode (a codec bug): " + decoded.status.message);
-        if (count_zero_area_triangles(decoded.value) == 0) *best_remeshed = std::move(refined);
-      }
+      refine_attempt(*best_remeshed);
       out = finish_at(ctx, options, std::move(*best_remeshed), &measured);
       if (!measured) {
         // One step (as pack_one would): again from the grid its search started from; several: from the best grid.
@@ -922,10 +957,64 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
         rounds += out.remesh.search.size();
       }
       seconds += seconds_since(t1);
-      // The kept attempt's entry: the stream's final size (the others' are their rounded heights' sizes).
-      for (PackResult::Trial& t : tried)
-        if (t.bits == bits && t.step_scale == scale) t.bytes = out.stream.size();
+      final_bytes(tried, out);
       out.tried = std::move(tried);
+      ProgressJob::best_bytes(out.stream.size());
+    }
+    // The kept stream's max (full density) over the bound: the smallest of the other attempts, refined and their
+    // heights chosen, that meets the RMS target and the bound; the smallest refined stream when none does.
+    const double bound = kDefaultMaxErrorPerTarget * options.target_error;
+    if (bound_check && out.remesh.error.max > bound && (!finished_others.empty() || !remeshed_others.empty())) {
+      const auto t1 = std::chrono::steady_clock::now();
+      auto tried = std::move(out.tried);
+      const PackResult::Trial first{out.bits, out.step_scale, out.stream.size()};
+      const double first_max = out.remesh.error.max;
+      const int64_t first_grid = out.remesh.prm.lattice.A;
+      std::vector<PackResult> refined = std::move(finished_others);  // each met the RMS target at full density
+      refined.push_back(std::move(out));
+      const auto within = [&](const PackResult& r) { return r.remesh.error.max <= bound; };
+      // With defer_heights: the unrefined attempts, smallest stream first, at most plan.bound_candidates of them,
+      // until one meets the bound.
+      std::stable_sort(remeshed_others.begin(), remeshed_others.end(),
+                       [](const auto& a, const auto& b) { return a->out.stream.size() < b->out.stream.size(); });
+      int refined_others = 0;
+      for (auto& c : remeshed_others) {
+        if (refined_others >= plan.bound_candidates || std::any_of(refined.begin(), refined.end(), within)) break;
+        ++refined_others;
+        refine_attempt(*c);
+        bool met = true;
+        PackResult r = finish_at(ctx, options, std::move(*c), &met);
+        final_bytes(tried, r);
+        if (met) refined.push_back(std::move(r));  // one that misses the RMS target at full density is no candidate
+      }
+      size_t pick = SIZE_MAX;
+      for (size_t i = 0; i < refined.size(); ++i)
+        if (within(refined[i]) && (pick == SIZE_MAX || refined[i].stream.size() < refined[pick].stream.size())) pick = i;
+      const bool met_bound = pick != SIZE_MAX;
+      if (!met_bound)
+        for (size_t i = 0; i < refined.size(); ++i)
+          if (pick == SIZE_MAX || refined[i].stream.size() < refined[pick].stream.size()) pick = i;
+      out = std::move(refined[pick]);
+      out.tried = std::move(tried);
+      const auto frame = [&](int bits, double scale, int64_t grid, size_t bytes, double max) {
+        char b[160];
+        std::snprintf(b, sizeof b, "%d bits, step scale %.4g, grid %lld steps (%zu B, max %.2fx the target)", bits,
+                      scale, static_cast<long long>(grid), bytes, max / options.target_error);
+        return std::string(b);
+      };
+      const auto frame_of = [&](const PackResult& r) {
+        return frame(r.bits, r.step_scale, r.remesh.prm.lattice.A, r.stream.size(), r.remesh.error.max);
+      };
+      std::string others;
+      for (size_t i = 0; i < refined.size(); ++i)
+        if (i != pick)
+          others += "; " + frame_of(refined[i]);
+      out.search_note = "the search's choice, " + frame(first.bits, first.step_scale, first_grid, first.bytes, first_max) +
+                        ", passes the " + std::to_string(static_cast<int>(kDefaultMaxErrorPerTarget)) + "x bound; kept " +
+                        frame_of(out) +
+                        (met_bound ? ", the smallest within the bound" : ", the smallest: none is within the bound") +
+                        " (" + std::to_string(refined.size()) + " attempts refined" + others + ")";
+      seconds += seconds_since(t1);
       ProgressJob::best_bytes(out.stream.size());
     }
     out.seconds_remesh = seconds - out.seconds_encode;  // the whole search

@@ -276,6 +276,23 @@ TEST(PackMaxErrorHeavy, HorseTailTipComesNearerAtOnePointThreeEMinus4) {
   EXPECT_LE(d.rel(d.max), 10.4 * o.target_error);
 }
 
+// hsearch: at effort 4 the smaller unrefined attempt (11 bits x1.542) refines to 10.92x the target on the horse at
+// 2e-4; the search then refines its other attempt (11 bits x1.414) and keeps it, 5,490 B at 7.48x (smaller too), and
+// says so (PackResult::search_note). Fails without the search's bound (10.92x).
+TEST(PackMaxErrorHeavy, SearchKeepsAnAttemptWithin8xAtEffort4) {
+  PackOptions o;
+  o.target_error = 2e-4;
+  o.effort = 4;
+  const prm::Mesh input = shared_mesh("horse.ply");
+  const prm::pipeline::PackResult r = prm::pipeline::pack(input, o);
+  const prm::DistanceReport d = decoded_distance(input, r);
+  std::printf("horse at effort 4: %zu bytes, %d bits x%.4g, RMS %.3e, max %.3e\n%s\n", r.stream.size(), r.bits,
+              r.step_scale, d.rel(d.rms), d.rel(d.max), r.search_note.c_str());
+  EXPECT_LE(d.rel(d.rms), o.target_error);
+  EXPECT_LE(d.rel(d.max), prm::pipeline::kDefaultMaxErrorPerTarget * o.target_error);
+  EXPECT_NE(r.search_note.find("the smallest within the bound"), std::string::npos) << r.search_note;
+}
+
 #endif
 
 }  // namespace

@@ -257,6 +257,7 @@ void add_pack_command(CLI::App& root) {
                         "quantization (what the separation could not mend)");
     const bool general = r.mode == pipeline::PackMode::general;
     std::vector<std::string> notes = r.repair.notes;
+    if (!r.search_note.empty()) notes.push_back(r.search_note);
     write_file_bytes(opt->output, r.stream);
     if (!opt->keep_prm.empty()) {
       if (general)

@@ -54,7 +54,13 @@ const char* pack_mode_name(PackMode mode);  // "prm", "general", "auto" (the --m
 // refines at kLocalRefineShare x kDefaultMaxErrorPerTarget x target_error, and the search runs unrefined and refines
 // only the grid it chooses (RemeshOptions::refine_last: issue 21's CPU budget). When the heights' lambda gives a
 // stream over 8x the target, a smaller one that meets both is taken (finish_at; at most kHeightGuardTries of them,
-// then the rounded heights: pipeline/src/height_guard.h). With max_error the refinement runs without its notch steps
+// then the rounded heights: pipeline/src/height_guard.h). When the attempt the search keeps (bit depth, step scale)
+// still passes 8x the target once refined (its full-density max), the smallest of its other attempts that meets the
+// target and 8x is kept instead (EffortPlan::bound_candidates; the smallest refined one when none does;
+// PackResult::search_note says which and why), and the exhaustive search also tries the predicted step
+// (kStepPerTargetError), so that it keeps no larger stream than effort 3's first step (hsearch, bench/README.md
+// "Worst-case error": the horse at 2e-4, effort 9 5,826 B 12.41x -> 5,490 B 7.48x, effort 4 5,623 B 10.92x -> 5,490
+// B 7.48x; at 1.3e-4 none of the attempts is within 8x). With max_error the refinement runs without its notch steps
 // (RemeshOptions::refine_notches). With refine_facing_guard (the default) no refinement step, rounding or heights'
 // lambda turns a triangle away from the input. Measured at 2e-4 (bench/README.md "Worst-case error", hdefault): the
 // max from 10.2-29x the target to 6.6-7.5x on the paper's models and three CGAL meshes, for -1.0% to +3.6% bytes and
@@ -190,6 +196,11 @@ struct EffortPlan {
   // for a 50k-vertex model) the refinement alone would use up (3-5 s on the paper's models, bench/README.md
   // "Worst-case error").
   bool local_refinement = true;
+  // With the local refinement and defer_heights: when the kept attempt's refined stream passes
+  // kDefaultMaxErrorPerTarget x the target (its full-density max), at most this many of the search's other attempts
+  // (smallest unrefined stream first) are refined and their heights chosen, until one meets the target and the
+  // bound (hsearch). Without defer_heights every attempt was refined already: the smallest within the bound is kept.
+  int bound_candidates = 2;
 };
 EffortPlan effort_plan(int effort);  // throws std::invalid_argument outside kMinEffort..kMaxEffort
 // Whether pack refines locally without max_error (PackOptions::local_refinement resolved by options.effort's plan).
@@ -234,6 +245,9 @@ struct PackResult {
   };
   std::vector<Trial> tried;     // every (bit depth, step scale) the search tried and its stream's size
   size_t remesh_rounds = 0;     // grids remeshed by the whole search
+  // The search's choice passed kDefaultMaxErrorPerTarget x the target (the local refinement's bound): which attempt
+  // was kept instead and why (EffortPlan::bound_candidates); empty otherwise.
+  std::string search_note;
   Mesh repaired_input;          // what was remeshed when `repaired` (the input itself otherwise, not copied)
   double seconds_repair = 0, seconds_remesh = 0, seconds_encode = 0;
 
