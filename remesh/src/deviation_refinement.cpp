@@ -43,6 +43,11 @@ constexpr size_t kTradeAfter = 4;
 constexpr double kTradeGain = 0.8;
 // Rim moves of one vertex, over all rounds (a straying point and a missed vertex could push it back and forth).
 constexpr uint8_t kMaxMoves = 2;
+// After this many rounds, a rim move must also keep the input vertices closest to the vertex's faces within the bound
+// of them, or as near as they were (NearInputs; hcrease: the feline's remesh at 2e-4, 9.64x, where a round-11 move for
+// one input vertex left another input point 1.48x the bound away, which no later round mended. From the first round
+// the horse went to 8.58x; from the fifth the feline's remesh came to 8.88x, from the ninth 8.38x, the eleventh 8.41x).
+constexpr size_t kRimGuardAfter = 8;
 // Input triangles with a vertex farther than this share of the bound from the mesh are probed between their vertices.
 constexpr double kFaceProbeShare = 0.5;
 // The finest barycentric grid (divisions per side) an input triangle near a missed vertex is probed on.
@@ -588,6 +593,14 @@ bool flip_straying_edge(Mesh& m, const std::vector<std::vector<uint32_t>>& verte
   return false;
 }
 
+// The input vertices whose closest face (this round's measure) is each mesh face, for the rim moves' check
+// (kRimGuardAfter).
+struct NearInputs {
+  const Mesh* input = nullptr;
+  const std::vector<AabbTree::Hit>* hits = nullptr;
+  std::vector<std::vector<uint32_t>> of_face;
+};
+
 // A thin sheet's rim (issue 22): where the resampling cut a tip off, the mesh's closest point to the missed input
 // vertex lies on the seam that closes the sheet, between irregular vertices. Moving one of them out to the input
 // vertex (or part of the way) follows the tip at no cost in vertices. Tries the face's irregular vertices, nearest
@@ -596,11 +609,12 @@ bool flip_straying_edge(Mesh& m, const std::vector<std::vector<uint32_t>>& verte
 // along its relief's axis only (a lattice vertex off a smooth part of the input: CGAL's bunny00), when its faces and
 // itself then stray less; and (lattice_reach) for a missed input point, along its axis towards it, when the point
 // then lies at least 10% nearer its faces and they stay within the bound (a move instead of a new vertex, which
-// costs more bytes). False when no move is kept.
+// costs more bytes). With `near` (kRimGuardAfter), a move must also keep the input vertices closest to the vertex's
+// faces within the bound of those faces or as near as they were. False when no move is kept.
 bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, const PrmMesh& prm,
                      const AabbTree& input_tree, const DeviationRefinementOptions& options, double bound2,
                      const InputFacing& facing, std::vector<uint8_t>& touched, std::vector<uint8_t>& moved,
-                     const std::vector<uint8_t>& boundary, const Deviation& d) {
+                     const std::vector<uint8_t>& boundary, const NearInputs* near, const Deviation& d) {
   const Tri t = m.triangles[d.face];
   std::array<uint32_t, 3> order = {t[0], t[1], t[2]};
   std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
@@ -646,6 +660,24 @@ bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_f
       return best;
     };
     const double missed_before2 = lattice && !mesh_point ? missed2() : 0;
+    // The input vertices closest to v's faces, each with the squared distance it may come to: the bound or where it was.
+    std::vector<std::pair<Vec3, double>> guarded;
+    if (near != nullptr)
+      for (uint32_t f : faces)
+        if (f < near->of_face.size())
+          for (uint32_t u : near->of_face[f])
+            guarded.push_back({near->input->positions[u], std::max(bound2, (*near->hits)[u].distance2)});
+    const auto guarded_near = [&] {
+      for (const auto& [q, allowed2] : guarded) {
+        double best = std::numeric_limits<double>::infinity();
+        for (uint32_t f : faces) {
+          const Tri& w = m.triangles[f];
+          best = std::min(best, point_triangle_distance2(q, m.positions[w[0]], m.positions[w[1]], m.positions[w[2]]));
+        }
+        if (best > allowed2 * 1.0000001) return false;  // (the distance before the move, measured again)
+      }
+      return true;
+    };
     const double before2 = deviation2();
     const double allowed2 = mesh_point ? before2 * 0.999 : std::max(bound2, before2);
     for (double share : kShares) {
@@ -656,6 +688,7 @@ bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_f
         ok = dot(n, normals[k]) > 1e-3 * norm(n) * norm(normals[k]);
       }
       if (ok && lattice && !mesh_point) ok = missed2() < 0.81 * missed_before2;
+      if (ok) ok = guarded_near();
       if (ok && facing.keeps(m, tris) && deviation2() <= allowed2) {
         for (uint32_t f : faces) touched[f] = 1;
         ++moved[v];
@@ -1215,13 +1248,22 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
     std::vector<uint8_t> touched(m.triangles.size(), 0);
     moved.resize(m.positions.size(), 0);
     check.facing.index_cells(m);
+    NearInputs near;
+    if (st.rounds > kRimGuardAfter) {
+      near.input = &input;
+      near.hits = &hits;
+      near.of_face.assign(m.triangles.size(), {});
+      for (uint32_t u = 0; u < hits.size(); ++u)
+        if (hits[u].found()) near.of_face[hits[u].face].push_back(u);
+    }
     size_t inserted_this_round = 0;
     for (const Deviation& d : far) {
       if (st.inserted >= budget) break;
       if (touched[d.face]) continue;
       const size_t facing_refusals = check.facing.refusals;
       if (options.thin_sheets &&
-          move_rim_vertex(m, vertex_faces, prm, input_tree, options, bound2, check.facing, touched, moved, boundary, d)) {
+          move_rim_vertex(m, vertex_faces, prm, input_tree, options, bound2, check.facing, touched, moved, boundary,
+                          st.rounds > kRimGuardAfter ? &near : nullptr, d)) {
         ++st.moved;
         ++inserted_this_round;
         continue;
