@@ -12,6 +12,9 @@
 //   refunr  the same before the rounding (what the refinement itself leaves; refunr < R < refined: the rounding)
 // Usage: prm_bench_max_error_sites MESH TARGET_ERROR [K] [--max-error E] [--refine R] [--[no-]local-refinement]
 //        [--effort N] [--bits B] [--step-scale S]
+//        prm_bench_max_error_sites MESH TARGET_ERROR [K] --mesh OTHER [--grid G]
+// (--mesh: only OTHER's worst sites against MESH, e.g. `prm remesh`'s output, none of the stages; sites --grid G
+// apart, a fraction of the diagonal, 0.0065 unless given)
 // (--max-error, --[no-]local-refinement, --effort, --bits, --step-scale: the options of the pack whose stream is the "decoded" stage; without
 // them, pack's defaults)
 #include <algorithm>
@@ -99,7 +102,8 @@ int main(int argc, char** argv) {
   prm::pipeline::PackOptions po;
   po.target_error = std::atof(argv[2]);
   size_t k = 8;
-  double refine = 0;
+  double refine = 0, site_grid = 0.0065;
+  const char* other = nullptr;
   for (int i = 3; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--max-error" && i + 1 < argc) po.max_error = std::atof(argv[++i]);
@@ -109,10 +113,28 @@ int main(int argc, char** argv) {
     else if (a == "--effort" && i + 1 < argc) po.effort = std::atoi(argv[++i]);
     else if (a == "--bits" && i + 1 < argc) po.bits = std::atoi(argv[++i]);
     else if (a == "--step-scale" && i + 1 < argc) po.step_scale = std::atof(argv[++i]);
+    else if (a == "--mesh" && i + 1 < argc) other = argv[++i];
+    else if (a == "--grid" && i + 1 < argc) site_grid = std::atof(argv[++i]);
     else k = static_cast<size_t>(std::atoi(argv[i]));
   }
   Mesh input = prm::read_mesh(argv[1]);
   if (!prm::validate_mesh(input).ready_for_remesh()) input = prm::repair_mesh(input);
+  std::vector<std::vector<uint32_t>> vertex_faces(input.positions.size());
+  for (uint32_t f = 0; f < input.triangles.size(); ++f)
+    for (uint32_t v : input.triangles[f]) vertex_faces[v].push_back(f);
+  if (other != nullptr) {
+    const Mesh mesh = prm::read_mesh(other);
+    const double diagonal = prm::bbox_diagonal(input), grid = site_grid * diagonal;
+    const prm::DistanceReport report = prm::metro_distance(input, mesh);
+    std::printf("%s against %s: RMS %.3e, max %.3e (%.2fx the target)\n", other, argv[1], report.rel(report.rms),
+                report.rel(report.max), report.rel(report.max) / po.target_error);
+    for (const prm::DeviationSite& site : prm::worst_deviations(input, mesh, k, grid)) {
+      const Vec3 p = site.a_to_b ? site.sample : site.closest;  // a point of the input
+      std::printf("  %-5s %10.3e (%8.4f %8.4f %8.4f) crease %5.1f\n", site.a_to_b ? "in>pr" : "pr>in",
+                  site.distance / diagonal, p[0], p[1], p[2], crease_near(input, vertex_faces, p, grid));
+    }
+    return 0;
+  }
   const prm::pipeline::PackResult packed = prm::pipeline::pack(input, po);
   const auto decoded = prm::codec::decode(packed.stream.data(), packed.stream.size());
   if (!decoded.ok()) {
@@ -170,9 +192,6 @@ int main(int argc, char** argv) {
                 s.report.max / s.report.rms);
   }
 
-  std::vector<std::vector<uint32_t>> vertex_faces(input.positions.size());
-  for (uint32_t f = 0; f < input.triangles.size(); ++f)
-    for (uint32_t v : input.triangles[f]) vertex_faces[v].push_back(f);
   const Stage& last = stages.back();
   const auto sites = prm::worst_deviations(input, last.mesh, k, grid);
   std::printf("sites (distances as fractions of the diagonal; local max within one grid size):\n");

@@ -264,14 +264,16 @@ TEST(PackMaxErrorHeavy, DefaultPackKeepsTheHorseWithin8x) {
 // hnine: at 1.3e-4 the horse's tail tip, beyond a thin sheet's rim, stalled from round 6 at 1.6-1.8x the
 // refinement's bound: every split of its closest face turned a triangle away, and the split of a neighbouring face
 // that faces the input put its vertex no nearer. After kFacingNearerAfter rounds that split is kept only where it
-// brings the missed point nearer: 11.55x -> 10.96x the target (still over 8x: bench/README.md "Worst-case error",
-// hnine). The bound below fails without it.
+// brings the missed point nearer: 11.55x -> 10.96x the target (hnine). htail: the tip stalled because moving its rim
+// vertex out to it made a face across the notch beside it stray 1.25x the bound; the tip move (move_rim_vertex's
+// `reached`) takes that trade, and later rounds split the face: 9.88x (still over 8x: bench/README.md "Worst-case
+// error", htail). The bound below fails without it.
 TEST(PackMaxErrorHeavy, HorseTailTipComesNearerAtOnePointThreeEMinus4) {
   PackOptions o;
   o.target_error = 1.3e-4;
   const prm::DistanceReport d = packed_distance("horse.ply", o);
   EXPECT_LE(d.rel(d.rms), o.target_error);
-  EXPECT_LE(d.rel(d.max), 11.2 * o.target_error);
+  EXPECT_LE(d.rel(d.max), 10.4 * o.target_error);
 }
 
 #endif

@@ -609,12 +609,20 @@ struct NearInputs {
 // along its relief's axis only (a lattice vertex off a smooth part of the input: CGAL's bunny00), when its faces and
 // itself then stray less; and (lattice_reach) for a missed input point, along its axis towards it, when the point
 // then lies at least 10% nearer its faces and they stay within the bound (a move instead of a new vertex, which
-// costs more bytes). With `near` (kRimGuardAfter), a move must also keep the input vertices closest to the vertex's
-// faces within the bound of those faces or as near as they were. False when no move is kept.
+// costs more bytes). False when no move is kept.
+// With `reached` (a tip move, htail: for a missed input point that no move, split or facing-face split above served):
+// an irregular vertex not moved so before (`reached`, once per vertex over all rounds, apart from kMaxMoves) moves
+// out to the point even where its faces then stray beyond the bound, as long as they stray no farther than the point
+// was missed and the point comes no farther from them: a thin sheet's tip beyond the rim (the horse's tail at
+// 1.3e-4) is missed by 1.6x the bound while its rim vertex, moved there, makes a face across the notch beside the tip
+// stray 1.25x; later rounds split that face.
+// With `near` (kRimGuardAfter), a move must also keep the input vertices closest to the vertex's faces within the
+// bound of those faces or as near as they were.
 bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, const PrmMesh& prm,
                      const AabbTree& input_tree, const DeviationRefinementOptions& options, double bound2,
                      const InputFacing& facing, std::vector<uint8_t>& touched, std::vector<uint8_t>& moved,
-                     const std::vector<uint8_t>& boundary, const NearInputs* near, const Deviation& d) {
+                     const std::vector<uint8_t>& boundary, const NearInputs* near, const Deviation& d,
+                     std::vector<uint8_t>* reached = nullptr) {
   const Tri t = m.triangles[d.face];
   std::array<uint32_t, 3> order = {t[0], t[1], t[2]};
   std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
@@ -627,7 +635,8 @@ bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_f
     // least-squares heights move it), for a straying point or (lattice_reach) towards a missed input point.
     const bool lattice = v < prm.vertex_relief.size() && prm.vertex_relief[v] >= 0;
     if (lattice && (!options.lattice_moves || (!mesh_point && !options.lattice_reach))) continue;
-    if (v >= moved.size() || moved[v] >= kMaxMoves) continue;  // inserted in this round, or moved enough
+    if (reached != nullptr && (lattice || mesh_point || v >= reached->size() || (*reached)[v])) continue;
+    if (v >= moved.size() || (reached == nullptr && moved[v] >= kMaxMoves)) continue;  // inserted in this round, or moved enough
     if (v < boundary.size() && boundary[v]) continue;  // the input's boundary stays where it is
     const std::vector<uint32_t>& faces = vertex_faces[v];
     if (std::any_of(faces.begin(), faces.end(), [&](uint32_t f) { return touched[f] != 0; })) continue;
@@ -679,7 +688,9 @@ bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_f
       return true;
     };
     const double before2 = deviation2();
-    const double allowed2 = mesh_point ? before2 * 0.999 : std::max(bound2, before2);
+    const double allowed2 = reached != nullptr ? std::max({bound2, before2, d.distance2})
+                            : mesh_point       ? before2 * 0.999
+                                               : std::max(bound2, before2);
     for (double share : kShares) {
       m.positions[v] = from + share * (to - from);
       bool ok = true;
@@ -689,9 +700,14 @@ bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_f
       }
       if (ok && lattice && !mesh_point) ok = missed2() < 0.81 * missed_before2;
       if (ok) ok = guarded_near();
+      if (ok && reached != nullptr) ok = missed2() <= d.distance2;
       if (ok && facing.keeps(m, tris) && deviation2() <= allowed2) {
         for (uint32_t f : faces) touched[f] = 1;
-        ++moved[v];
+        if (reached != nullptr) {
+          (*reached)[v] = 1;
+        } else {
+          ++moved[v];
+        }
         return true;
       }
     }
@@ -1058,6 +1074,7 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
   }
   if (options.facing_guard) check.facing = InputFacing(&input, &input_tree, &prm.frame, m);
   std::vector<uint8_t> moved;  // rim moves per vertex, over all rounds (at most kMaxMoves: no back and forth)
+  std::vector<uint8_t> reached;  // tip moves per vertex (move_rim_vertex's `reached`: at most one)
   // The pr>in measures (against the input, which does not change) of the mesh's faces and vertices, kept from round
   // to round: only the faces a round changed (`stale`, every face at first) and their vertices are measured again,
   // which gives the same figures as measuring all (h22max5: the probes of every face in every round were most of
@@ -1247,6 +1264,7 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
       for (uint32_t v : m.triangles[f]) vertex_faces[v].push_back(f);
     std::vector<uint8_t> touched(m.triangles.size(), 0);
     moved.resize(m.positions.size(), 0);
+    reached.resize(m.positions.size(), 0);
     check.facing.index_cells(m);
     NearInputs near;
     if (st.rounds > kRimGuardAfter) {
@@ -1290,6 +1308,11 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
           (options.thin_sheets && !strays_from_input(d) && insert_on_facing_face(m, vertex_faces, touched, check, d,
                                                                                st.rounds > kFacingNearerAfter))) {
         ++st.inserted;
+        ++inserted_this_round;
+      } else if (options.thin_sheets && !strays_from_input(d) &&
+                 move_rim_vertex(m, vertex_faces, prm, input_tree, options, bound2, check.facing, touched, moved,
+                                 boundary, st.rounds > kRimGuardAfter ? &near : nullptr, d, &reached)) {
+        ++st.moved;
         ++inserted_this_round;
       } else {
         ++st.refused;
