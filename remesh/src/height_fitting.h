@@ -16,7 +16,7 @@ struct HeightFitOptions {
   double max_shift = 0.25;  // largest total move, in grid lengths
   // A sample's closest point is taken on a known input triangle, without a tree query, when the sample projects well
   // inside it (AabbTree::well_inside): the triangle the same sample had in the previous iteration, else the previous
-  // sample's. Nearly always the same point; pack's effort 0 (about half the queries on the venus).
+  // sample's. Nearly always the same point; pack's effort 0 (on the venus, the samples' query time 0.48 -> 0.32 s).
   bool reuse_faces = false;
 };
 
