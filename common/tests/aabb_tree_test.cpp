@@ -106,7 +106,8 @@ TEST(AabbTree, ReusesAKnownTriangleOnlyWellInside) {
   const AabbTree tree(m);
   EXPECT_TRUE(tree.well_inside({0.25, 0.25, 0.1}, 0));
   EXPECT_FALSE(tree.well_inside({0.25, 0.25, 0.1}, 1));
-  EXPECT_FALSE(tree.well_inside({0.02, 0.5, 0.1}, 0));  // barycentric 0.02 < kWellInside
+  EXPECT_FALSE(tree.well_inside({0.02, 0.5, 0.1}, 0));  // 0.1 over the plane, 0.02 from an edge
+  EXPECT_TRUE(tree.well_inside({0.02, 0.5, 0.01}, 0));
   EXPECT_FALSE(tree.well_inside({-0.1, 0.5, 0.1}, 0));  // outside
   EXPECT_FALSE(tree.well_inside({0.25, 0.25, 0.1}, 7));  // no such triangle
   EXPECT_FALSE(tree.well_inside({0.25, 0.25, 0.3}, 0));  // farther from the plane (0.3) than from an edge (0.25)

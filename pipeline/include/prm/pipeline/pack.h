@@ -188,7 +188,7 @@ struct EffortPlan {
   bool predicted_heights_only = false;
   // The least-squares heights take a sample's closest point on an input triangle already known for it when the
   // sample projects well inside it (remesh::RemeshOptions::height_fit_reuse_faces, AabbTree::well_inside) instead
-  // of a closest-point query: the venus's heights 0.81 -> 0.67 s; horse -1 byte, venus the same size, feline and
+  // of a closest-point query: the venus at effort 0 -7% CPU; horse -1 byte, venus the same size, feline and
   // bunny_zipper the same streams (bench/README.md "pack effort", fifteenth round).
   bool height_fit_reuse_faces = false;
   // PackOptions::LocalRefinement::automatic refines: everywhere but at effort 0, whose budget (issue 21: 3 s CPU
