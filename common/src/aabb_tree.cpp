@@ -392,6 +392,40 @@ void AabbTree::closest(const Vec3& p, Hit& hint) const {
   search(p, hint, norm2(p - q));
 }
 
+bool AabbTree::well_inside(const Vec3& p, uint32_t face) const {
+  if (face >= slot_.size()) return false;
+  const Triangle& t = triangles_[slot_[face]];
+  const Vec3 &a = points_[t.a], &b = points_[t.b], &c = points_[t.c];
+  const Vec3 ab = b - a, ac = c - a, ap = p - a, bp = p - b, cp = p - c;
+  const double d1 = dot(ab, ap), d2 = dot(ac, ap), d3 = dot(ab, bp), d4 = dot(ac, bp), d5 = dot(ab, cp),
+               d6 = dot(ac, cp);
+  // The barycentric coordinates of the projection times |n|^2, n = ab x ac.
+  const double vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
+  const double m = kWellInside * (va + vb + vc);
+  if (!(va > m && vb > m && vc > m)) return false;
+  // p's height over the plane, h / |n|, at most the projection's distance to each edge (va / (|n| |bc|) for bc):
+  // h^2 |bc|^2 <= va^2, and so on.
+  const double h = dot(ap, cross(ab, ac)), h2 = h * h;
+  return h2 * norm2(c - b) <= va * va && h2 * norm2(ac) <= vb * vb && h2 * norm2(ab) <= vc * vc;
+}
+
+AabbTree::Hit AabbTree::on_face(const Vec3& p, uint32_t face) const {
+  Hit hit;
+  if (face >= slot_.size()) return hit;
+  const Triangle& t = triangles_[slot_[face]];
+  hit.point = closest_point_on_triangle(p, points_[t.a], points_[t.b], points_[t.c]);
+  hit.distance2 = norm2(p - hit.point);
+  hit.face = face;
+  return hit;
+}
+
+void AabbTree::closest_reusing(const Vec3& p, Hit& hint) const {
+  if (hint.found() && well_inside(p, hint.face))
+    hint = on_face(p, hint.face);
+  else
+    closest(p, hint);
+}
+
 bool AabbTree::within(const Vec3& p, double bound2, Hit& hint) const {
   const auto near = [&](uint32_t slot) {
     const Triangle& t = triangles_[slot];

@@ -97,6 +97,45 @@ TEST(AabbTree, BoundedQuery) {
   EXPECT_DOUBLE_EQ(hit.distance2, 4.0);
 }
 
+// well_inside / on_face / closest_reusing: a known triangle instead of a search, only where the point projects onto
+// its interior away from its edges; elsewhere closest_reusing searches (the same answer as closest()).
+TEST(AabbTree, ReusesAKnownTriangleOnlyWellInside) {
+  Mesh m;
+  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0.5}};
+  m.triangles = {{0, 1, 2}, {1, 3, 2}};
+  const AabbTree tree(m);
+  EXPECT_TRUE(tree.well_inside({0.25, 0.25, 0.1}, 0));
+  EXPECT_FALSE(tree.well_inside({0.25, 0.25, 0.1}, 1));
+  EXPECT_FALSE(tree.well_inside({0.02, 0.5, 0.1}, 0));  // 0.1 over the plane, 0.02 from an edge
+  EXPECT_TRUE(tree.well_inside({0.02, 0.5, 0.01}, 0));
+  EXPECT_FALSE(tree.well_inside({-0.1, 0.5, 0.1}, 0));  // outside
+  EXPECT_FALSE(tree.well_inside({0.25, 0.25, 0.1}, 7));  // no such triangle
+  EXPECT_FALSE(tree.well_inside({0.25, 0.25, 0.3}, 0));  // farther from the plane (0.3) than from an edge (0.25)
+  const AabbTree::Hit on = tree.on_face({0.25, 0.25, 0.1}, 0);
+  EXPECT_EQ(on.face, 0u);
+  EXPECT_DOUBLE_EQ(on.distance2, 0.01);
+  EXPECT_EQ(on.point, (Vec3{0.25, 0.25, 0}));
+  // Near the shared edge, on triangle 1's side: the hint (triangle 0) is not taken.
+  for (const Vec3 p : {Vec3{0.52, 0.52, 0.3}, Vec3{0.7, 0.7, 0.4}, Vec3{0.25, 0.25, 0.1}}) {
+    AabbTree::Hit hint = tree.on_face(p, 0);
+    tree.closest_reusing(p, hint);
+    const AabbTree::Hit exact = tree.closest(p);
+    EXPECT_EQ(hint.face, exact.face);
+    EXPECT_DOUBLE_EQ(hint.distance2, exact.distance2);
+  }
+  // A point well inside the hint's triangle takes it, even where another is nearer (the estimate's one error).
+  Mesh two = m;
+  two.positions.push_back({0, 0, 0.2});
+  two.positions.push_back({1, 0, 0.2});
+  two.positions.push_back({0, 1, 0.2});
+  two.triangles.push_back({4, 5, 6});
+  const AabbTree tree2(two);
+  AabbTree::Hit hint = tree2.on_face({0.25, 0.25, 0.15}, 0);
+  tree2.closest_reusing({0.25, 0.25, 0.15}, hint);
+  EXPECT_EQ(hint.face, 0u);
+  EXPECT_EQ(tree2.closest({0.25, 0.25, 0.15}).face, 2u);
+}
+
 // within(p, bound2) says whether the closest point is within sqrt(bound2), whatever the hint; a yes gives a
 // triangle that near.
 TEST(AabbTree, WithinMatchesTheClosestDistance) {

@@ -234,6 +234,7 @@ Remeshed remesh_at(const SearchContext& ctx, const PackOptions& options, int bit
   ro.reliefs.parallel = options.parallel;
   ro.parallel = options.parallel;
   ro.fit_heights = options.fit_heights;
+  ro.height_fit_reuse_faces = ctx.plan.height_fit_reuse_faces;
   ro.error_flip_weight = options.error_flip_weight;
   ro.error_unit_stride = ctx.plan.error_unit_stride;
   ro.error_samples = ctx.plan.error_samples;
@@ -595,6 +596,7 @@ EffortPlan effort_plan(int effort) {
       p.first_grid_gate = 0.9;
       p.lambda_full_density = true;
       p.predicted_heights_only = true;
+      p.height_fit_reuse_faces = true;
       p.local_refinement = false;
       break;
     case 1: p.steps = 1; p.search_samples_per_face = 2; p.lambda_rounds = 3; p.grid_tolerance = 0.1; p.accept_error = 0.85; break;

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <iterator>
 #include <vector>
 
 #include "prm/surface_facing.h"
@@ -72,6 +73,9 @@ HeightFitStats fit_heights(PrmMesh& prm, const Mesh& input, const AabbTree& tree
   // flipped() of a face at the current positions, while they last (kFlipUnknown: not evaluated or a corner moved).
   enum : uint8_t { kFlipUnknown, kFlipUnknownMark, kFlipNo, kFlipYes };
   std::vector<uint8_t> flip_state(nf, kFlipUnknown);
+  // HeightFitOptions::reuse_faces: per face and sample, the input triangle of its closest point (kNoFace: none yet).
+  std::vector<uint32_t> sample_face;
+  if (options.reuse_faces) sample_face.assign(std::size(kSamples) * nf, AabbTree::kNoFace);
   for (int it = 0; it < options.iterations; ++it) {
     // Consecutive faces are neighbours (each relief's faces come in lattice order): the last sample's answer bounds
     // the next face's first query (AabbTree's hint) as it bounds the face's other six. Only the point is used, which
@@ -92,9 +96,18 @@ HeightFitStats fit_heights(PrmMesh& prm, const Mesh& input, const AabbTree& tree
         any = any || facing[k] > kMinFacing;
       }
       if (!any) return;
-      for (const auto& s : kSamples) {
+      for (size_t si = 0; si < std::size(kSamples); ++si) {
+        const auto& s = kSamples[si];
         const Vec3 p = a * s[0] + b * s[1] + c * s[2];
-        tree.closest(p, hint);
+        // HeightFitOptions::reuse_faces: this sample's triangle of the last iteration, else the previous sample's.
+        uint32_t* known = sample_face.empty() ? nullptr : &sample_face[std::size(kSamples) * f + si];
+        if (known && *known != AabbTree::kNoFace && tree.well_inside(p, *known))
+          hint = tree.on_face(p, *known);
+        else if (known)
+          tree.closest_reusing(p, hint);
+        else
+          tree.closest(p, hint);
+        if (known) *known = hint.face;
         if (!hint.found()) continue;
         const double offset = dot(hint.point - p, n);  // along the normal, to the input
         for (int k = 0; k < 3; ++k) {

@@ -14,6 +14,10 @@ namespace prm::remesh {
 struct HeightFitOptions {
   int iterations = 2;
   double max_shift = 0.25;  // largest total move, in grid lengths
+  // A sample's closest point is taken on a known input triangle, without a tree query, when the sample projects well
+  // inside it (AabbTree::well_inside): the triangle the same sample had in the previous iteration, else the previous
+  // sample's. Nearly always the same point; pack's effort 0 (on the venus, the samples' query time 0.48 -> 0.32 s).
+  bool reuse_faces = false;
 };
 
 struct HeightFitStats {

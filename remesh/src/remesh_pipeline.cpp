@@ -135,6 +135,7 @@ RemeshResult remesh(const Mesh& input, const RemeshOptions& options, const Error
   ro.max_normal_angle_deg = options.max_normal_angle_deg;
   ro.parallel = options.parallel;
   ro.fit_heights = options.fit_heights;
+  ro.height_fit_reuse_faces = options.height_fit_reuse_faces;
   ro.error_flip_weight = options.error_flip_weight;
   ro.error_unit_stride = options.error_unit_stride;
   ro.error_samples = options.error_samples;

@@ -261,7 +261,9 @@ PrmMesh resample_and_merge(const LayoutInput& layout, const ResampleOptions& opt
   st.vertices = nv;
   st.faces = nf;
   if (options.fit_heights) {
-    const HeightFitStats hs = fit_heights(prm, input, tree, HeightFitOptions{});
+    HeightFitOptions ho;
+    ho.reuse_faces = options.height_fit_reuse_faces;
+    const HeightFitStats hs = fit_heights(prm, input, tree, ho);
     st.heights_moved = hs.moved;
     st.height_moves_reverted = hs.reverted;
   }

@@ -83,6 +83,7 @@ struct RemeshOptions {
   double max_normal_angle_deg = 90;
   bool parallel = true;
   bool fit_heights = true;       // least-squares heights of the lattice vertices (ResampleOptions::fit_heights)
+  bool height_fit_reuse_faces = false;  // ResampleOptions::height_fit_reuse_faces
   double error_flip_weight = kDefaultErrorFlipWeight;  // error flips (ResampleOptions::error_flip_weight; < 0: none)
   int error_unit_stride = 1;  // ResampleOptions::error_unit_stride (the seam error flips' mean triangle error)
   int error_samples = kTriangleErrorSamples;  // ResampleOptions::error_samples (points per triangle, seam error flips)

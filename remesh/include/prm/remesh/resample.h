@@ -44,6 +44,7 @@ struct ResampleOptions {
   double max_normal_angle_deg = 90.0;  // paper: no triangle may turn more than 90 degrees away
   bool parallel = true;                // resample reliefs concurrently
   bool fit_heights = true;             // move lattice vertices along their axes to the least-squares fit
+  bool height_fit_reuse_faces = false;  // HeightFitOptions::reuse_faces
   int error_unit_stride = 1;           // SeamOptions::error_unit_stride
   int error_samples = kTriangleErrorSamples;  // SeamOptions::error_samples
   double error_flip_weight = kDefaultErrorFlipWeight;  // error flips (SeamOptions::error_flip_weight; < 0: none)
