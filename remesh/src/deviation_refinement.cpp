@@ -403,14 +403,9 @@ bool split_in_three(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_fa
 // A straying mesh point (strays_from_input) with `reach`: where the input's closest point would turn a triangle over,
 // the new vertex goes along the normal (normal_reach) instead. `trade`: a missed input point's new vertex at it (or
 // part of the way) may make triangles that stray past the bound, within kTradeGain x its distance (kTradeAfter).
-// With `onto_input` (an input-reaching split, htail2: for a missed input point that nothing else served): only the
-// split of the closest edge, its new vertex at the input's closest point to each place between the edge and the
-// missed point (kShares), no descent. On a thin strand (the horse's tail at 1.3e-4) the straight way out from the
-// edge to the point leaves a new face whose centroid is nearer the strand's other side, so it counts as facing away.
-// A new vertex on the input's surface lies on the near side and does not.
 bool insert(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std::vector<uint8_t>& touched,
             const AabbTree& input_tree, const StrayCheck& check, bool reach, bool descent, bool trade,
-            const Deviation& d, bool onto_input = false) {
+            const Deviation& d) {
   const uint32_t f = d.face;
   const Tri t = m.triangles[f];
   const Vec3 old_normal = face_normal(m, t);
@@ -422,7 +417,7 @@ bool insert(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std
   std::array<int, 3> corners = {0, 1, 2};  // the closest edge first: opposite the smallest coordinate
   std::sort(corners.begin(), corners.end(),
             [&](int x, int y) { return bc[static_cast<size_t>(x)] < bc[static_cast<size_t>(y)]; });
-  if (!onto_input && bc[static_cast<size_t>(corners[0])] > kEdgeBarycentric) {
+  if (bc[static_cast<size_t>(corners[0])] > kEdgeBarycentric) {
     // Inside the triangle: split it in three.
     if (split_in_three(m, vertex_faces, touched, check, f, nv, d.at, d.wanted, 0, trade2)) return true;
     if (along_normal &&
@@ -435,7 +430,7 @@ bool insert(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std
   const bool on_edge_point = bc[static_cast<size_t>(corners[0])] <= kEdgeBarycentric;
   for (int k : corners) {
     // A point on an edge: only that edge (splitting another one leaves the point where it was, and a sliver).
-    if ((on_edge_point || onto_input) && k != corners[0]) break;
+    if (on_edge_point && k != corners[0]) break;
     const uint32_t a = t[static_cast<size_t>((k + 1) % 3)], b = t[static_cast<size_t>((k + 2) % 3)],
                    c = t[static_cast<size_t>(k)];
     const int64_t g = other_face(m, vertex_faces, a, b, f);
@@ -456,7 +451,6 @@ bool insert(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std
     for (const Vec3& target : targets)
       for (double share : kShares) {
         m.positions[nv] = on_edge + share * (target - on_edge);
-        if (onto_input) m.positions[nv] = input_tree.closest(m.positions[nv]).point;
         if (!faces_agree(m, old_normal, mine) || !faces_agree(m, normal_u, theirs)) continue;
         if (check.facing.away(m, {mine[0], mine[1], theirs[0], theirs[1]}) > 0) {
           const uint32_t gf = static_cast<uint32_t>(g);
@@ -474,7 +468,7 @@ bool insert(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std
   }
   // descent_placement: no fixed place served; the place near the split point whose new triangles stray least (and,
   // for a missed input point, lie nearest it), when that is clearly less than at the split point.
-  if (descent && !onto_input && check.input_tree != nullptr) {
+  if (descent && check.input_tree != nullptr) {
     const double step = std::sqrt(d.distance2);
     const auto cost = [&](const std::vector<Tri>& tris, const std::vector<std::pair<Vec3, const std::vector<Tri>*>>&
                                                             normals) {
@@ -1319,10 +1313,6 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
                  move_rim_vertex(m, vertex_faces, prm, input_tree, options, bound2, check.facing, touched, moved,
                                  boundary, st.rounds > kRimGuardAfter ? &near : nullptr, d, &reached)) {
         ++st.moved;
-        ++inserted_this_round;
-      } else if (options.thin_sheets && options.reach_onto_input && !strays_from_input(d) &&
-                 insert(m, vertex_faces, touched, input_tree, check, false, false, false, d, true)) {
-        ++st.inserted;
         ++inserted_this_round;
       } else {
         ++st.refused;
