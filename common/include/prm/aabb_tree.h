@@ -54,9 +54,9 @@ class AabbTree {
   // projects onto the interior of triangle `face`, each barycentric coordinate above kWellInside (Ericson's
   // Voronoi-region test), and no farther from the plane than that projection is from each edge: a nearer triangle
   // then folds back over this one by more than 90 degrees or is another sheet of the surface. (A margin of 0.05
-  // gave the same four effort-0 streams and reused fewer samples: bench/README.md "pack effort", fifteenth round.) on_face: the closest
-  // point of that triangle to p. closest_reusing: on_face(p, hint.face) where p is well inside the hint's triangle,
-  // closest(p, hint) otherwise.
+  // gave the same four effort-0 streams and reused fewer samples: bench/README.md "pack effort", fifteenth round.)
+  // on_face: the closest point of that triangle to p. closest_reusing: on_face(p, hint.face) where p is well inside
+  // the hint's triangle, closest(p, hint) otherwise.
   static constexpr double kWellInside = 0.0;
   bool well_inside(const Vec3& p, uint32_t face) const;
   Hit on_face(const Vec3& p, uint32_t face) const;
