@@ -36,6 +36,9 @@ TEST(DeviationRefinement, LatticeVertexOffTheInputMovesAlongItsAxis) {
   const size_t vertices = prm.mesh.positions.size();
   DeviationRefinementOptions o;
   o.max_deviation = 1.0;
+  // The budget this case was written with (hear doubled the default): with 6%, the splits without lattice moves
+  // below go on to rounds whose rim moves move the vertices they inserted.
+  o.max_insert_share = 0.03;
   const DeviationRefinementStats st = refine_deviations(prm, input, tree, o);
   const Vec3 now = prm.mesh.positions[pole];
   std::printf("pole moved from (%.3f %.3f %.3f) to (%.3f %.3f %.3f), %.3f from the input; %zu moved, %zu inserted\n",
