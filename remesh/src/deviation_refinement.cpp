@@ -561,7 +561,8 @@ bool insert_across_crease(Mesh& m, const std::vector<std::vector<uint32_t>>& ver
   if (g < 0 || touched[static_cast<size_t>(g)]) return false;
   const uint32_t gf = static_cast<uint32_t>(g);
   const Tri u = m.triangles[gf];
-  std::vector<std::pair<double, int>> edges;  // (squared distance of its midpoint to the point, corner of u opposite it)
+  // (squared distance of its midpoint to the point, corner of u opposite it)
+  std::vector<std::pair<double, int>> edges;
   for (int j = 0; j < 3; ++j) {
     const uint32_t x = u[static_cast<size_t>((j + 1) % 3)], y = u[static_cast<size_t>((j + 2) % 3)];
     if ((x == a && y == b) || (x == b && y == a)) continue;
