@@ -769,6 +769,7 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
     // EffortPlan::defer_heights: the attempts are compared by their streams with rounded heights; the best one's
     // heights are chosen (finish_at) once the search is over.
     std::unique_ptr<Remeshed> best_remeshed;
+    size_t best_unrefined_bytes = 0;  // its stream before the deferred refinement (EffortPlan::bound_candidate_bytes)
     double best_initial_grid = 0;  // the grid the best attempt's search started from
     // The bound of the local refinement without max_error (kDefaultMaxErrorPerTarget x the target): the attempts not
     // kept, for when the kept one's refined stream passes it (choose_within_bound).
@@ -951,6 +952,7 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
       auto tried = std::move(out.tried);
       bool measured = true;
       const auto t1 = std::chrono::steady_clock::now();
+      best_unrefined_bytes = best_remeshed->out.stream.size();
       refine_attempt(*best_remeshed);
       out = finish_at(ctx, options, std::move(*best_remeshed), &measured);
       if (!measured) {
@@ -976,12 +978,13 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
       refined.push_back(std::move(out));
       const auto within = [&](const PackResult& r) { return r.remesh.error.max <= bound; };
       // With defer_heights: the unrefined attempts, smallest stream first, at most plan.bound_candidates of them,
-      // until one meets the bound.
+      // until one meets the bound, none past plan.bound_candidate_bytes x the kept one's unrefined stream.
       std::stable_sort(remeshed_others.begin(), remeshed_others.end(),
                        [](const auto& a, const auto& b) { return a->out.stream.size() < b->out.stream.size(); });
       int refined_others = 0;
       for (auto& c : remeshed_others) {
         if (refined_others >= plan.bound_candidates || std::any_of(refined.begin(), refined.end(), within)) break;
+        if (static_cast<double>(c->out.stream.size()) > plan.bound_candidate_bytes * best_unrefined_bytes) break;
         ++refined_others;
         refine_attempt(*c);
         bool met = true;
