@@ -143,6 +143,22 @@ int64_t other_face(const Mesh& m, const std::vector<std::vector<uint32_t>>& vert
   return -1;
 }
 
+// The face across edge a-b from face f, when there is one not changed in this round (touched), and its corner off
+// the edge.
+struct FaceAcross {
+  uint32_t face = 0, corner = 0;
+};
+bool face_across(const Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces,
+                 const std::vector<uint8_t>& touched, uint32_t a, uint32_t b, uint32_t f, FaceAcross& out) {
+  const int64_t g = other_face(m, vertex_faces, a, b, f);
+  if (g < 0 || touched[static_cast<size_t>(g)]) return false;
+  out.face = static_cast<uint32_t>(g);
+  out.corner = m.triangles[out.face][0];
+  for (uint32_t x : m.triangles[out.face])
+    if (x != a && x != b) out.corner = x;
+  return true;
+}
+
 // Does every new triangle face the way the triangle it replaces faced (and keep some area)?
 bool faces_agree(const Mesh& m, const Vec3& old_normal, const std::vector<Tri>& tris) {
   const double scale = norm(old_normal);
@@ -415,12 +431,10 @@ bool split_edge(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces,
   const Vec3 old_normal = face_normal(m, t);
   const uint32_t a = t[static_cast<size_t>((k + 1) % 3)], b = t[static_cast<size_t>((k + 2) % 3)],
                  c = t[static_cast<size_t>(k)];
-  const int64_t g = other_face(m, vertex_faces, a, b, f);
-  if (g < 0 || touched[static_cast<size_t>(g)]) return false;
-  const Tri u = m.triangles[static_cast<size_t>(g)];
-  uint32_t e = u[0];
-  for (uint32_t x : u)
-    if (x != a && x != b) e = x;
+  FaceAcross across;
+  if (!face_across(m, vertex_faces, touched, a, b, f, across)) return false;
+  const uint32_t g = across.face, e = across.corner;
+  const Tri u = m.triangles[g];
   const std::vector<Tri> mine = {{a, nv, c}, {nv, b, c}}, theirs = {{b, nv, e}, {nv, a, e}};
   const Vec3 pa = m.positions[a], pb = m.positions[b];
   const double s = std::clamp(dot(d.wanted - pa, pb - pa) / std::max(norm2(pb - pa), 1e-300), 0.1, 0.9);
@@ -622,12 +636,10 @@ bool flip_straying_edge(Mesh& m, const std::vector<std::vector<uint32_t>>& verte
   const size_t k = static_cast<size_t>(std::min_element(bc.begin(), bc.end()) - bc.begin());
   if (bc[k] > kEdgeBarycentric) return false;
   const uint32_t c = t[k], a = t[(k + 1) % 3], b = t[(k + 2) % 3];
-  const int64_t g = other_face(m, vertex_faces, a, b, f);
-  if (g < 0 || touched[static_cast<size_t>(g)]) return false;
-  const Tri u = m.triangles[static_cast<size_t>(g)];
-  uint32_t e = u[0];
-  for (uint32_t x : u)
-    if (x != a && x != b) e = x;
+  FaceAcross across;
+  if (!face_across(m, vertex_faces, touched, a, b, f, across)) return false;
+  const uint32_t g = across.face, e = across.corner;
+  const Tri u = m.triangles[g];
   if (e == c) return false;
   for (uint32_t h : vertex_faces[c]) {
     const Tri& w = m.triangles[h];
