@@ -772,7 +772,7 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
     size_t best_unrefined_bytes = 0;  // its stream before the deferred refinement (EffortPlan::bound_candidate_bytes)
     double best_initial_grid = 0;  // the grid the best attempt's search started from
     // The bound of the local refinement without max_error (kDefaultMaxErrorPerTarget x the target): the attempts not
-    // kept, for when the kept one's refined stream passes it (choose_within_bound).
+    // kept, for when the kept one's refined stream passes it (the bound check after the search).
     const bool bound_check = plan.local_refinement && !(options.max_error > 0) && options.target_error > 0;
     std::vector<PackResult> finished_others;                 // without defer_heights: refined, heights chosen
     std::vector<std::unique_ptr<Remeshed>> remeshed_others;  // with defer_heights: unrefined
@@ -966,7 +966,7 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
       ProgressJob::best_bytes(out.stream.size());
     }
     // The kept stream's max (full density) over the bound: the smallest of the other attempts, refined and their
-    // heights chosen, that meets the RMS target and the bound; the smallest refined stream when none does.
+    // heights chosen, that meets the RMS target and the bound; when none does, the nearest to it within kNoBoundBytes.
     const double bound = kDefaultMaxErrorPerTarget * options.target_error;
     if (bound_check && out.remesh.error.max > bound && (!finished_others.empty() || !remeshed_others.empty())) {
       const auto t1 = std::chrono::steady_clock::now();
@@ -996,9 +996,18 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
       for (size_t i = 0; i < refined.size(); ++i)
         if (within(refined[i]) && (pick == SIZE_MAX || refined[i].stream.size() < refined[pick].stream.size())) pick = i;
       const bool met_bound = pick != SIZE_MAX;
-      if (!met_bound)
+      if (!met_bound) {
+        // None within the bound: the nearest to it among those at most kNoBoundBytes x the smallest stream.
+        size_t smallest = 0;
+        for (size_t i = 1; i < refined.size(); ++i)
+          if (refined[i].stream.size() < refined[smallest].stream.size()) smallest = i;
+        const double budget = kNoBoundBytes * static_cast<double>(refined[smallest].stream.size());
+        pick = smallest;
         for (size_t i = 0; i < refined.size(); ++i)
-          if (pick == SIZE_MAX || refined[i].stream.size() < refined[pick].stream.size()) pick = i;
+          if (static_cast<double>(refined[i].stream.size()) <= budget &&
+              refined[i].remesh.error.max < refined[pick].remesh.error.max)
+            pick = i;
+      }
       out = std::move(refined[pick]);
       out.tried = std::move(tried);
       const auto frame = [&](int bits, double scale, int64_t grid, size_t bytes, double max) {
@@ -1017,7 +1026,8 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
       out.search_note = "the search's choice, " + frame(first.bits, first.step_scale, first_grid, first.bytes, first_max) +
                         ", passes the " + std::to_string(static_cast<int>(kDefaultMaxErrorPerTarget)) + "x bound; kept " +
                         frame_of(out) +
-                        (met_bound ? ", the smallest within the bound" : ", the smallest: none is within the bound") +
+                        (met_bound ? ", the smallest within the bound"
+                                   : ", the nearest to it within 5% of the smallest stream: none is within the bound") +
                         " (" + std::to_string(refined.size()) + " attempts refined" + others + ")";
       seconds += seconds_since(t1);
       ProgressJob::best_bytes(out.stream.size());
