@@ -31,12 +31,15 @@ prm::DistanceReport decoded_distance(const prm::Mesh& input, const prm::pipeline
 prm::Mesh shared_mesh(const char* file) { return prm::read_mesh(std::string(PRM_SHARED_MESHES) + "/" + file); }
 
 // `file` packed with o, its decoded stream measured against it (and printed).
-prm::DistanceReport packed_distance(const char* file, const PackOptions& o) {
+// search_note: the pack's PackResult::search_note (printed too when there is one).
+prm::DistanceReport packed_distance(const char* file, const PackOptions& o, std::string* search_note = nullptr) {
   const prm::Mesh input = shared_mesh(file);
   const prm::pipeline::PackResult r = prm::pipeline::pack(input, o);
   const prm::DistanceReport d = decoded_distance(input, r);
-  std::printf("%s at target %.3g, max %.3g: %zu bytes, RMS %.3e, max %.3e\n", file, o.target_error, o.max_error,
-              r.stream.size(), d.rel(d.rms), d.rel(d.max));
+  std::printf("%s at target %.3g, max %.3g, effort %d: %zu bytes, %d bits x%.4g, RMS %.3e, max %.3e\n%s\n", file,
+              o.target_error, o.max_error, o.effort, r.stream.size(), r.bits, r.step_scale, d.rel(d.rms), d.rel(d.max),
+              r.search_note.c_str());
+  if (search_note != nullptr) *search_note = r.search_note;
   return d;
 }
 
@@ -284,14 +287,11 @@ TEST(PackMaxErrorHeavy, SearchKeepsAnAttemptWithin8xAtEffort4) {
   PackOptions o;
   o.target_error = 2e-4;
   o.effort = 4;
-  const prm::Mesh input = shared_mesh("horse.ply");
-  const prm::pipeline::PackResult r = prm::pipeline::pack(input, o);
-  const prm::DistanceReport d = decoded_distance(input, r);
-  std::printf("horse at effort 4: %zu bytes, %d bits x%.4g, RMS %.3e, max %.3e\n%s\n", r.stream.size(), r.bits,
-              r.step_scale, d.rel(d.rms), d.rel(d.max), r.search_note.c_str());
+  std::string note;
+  const prm::DistanceReport d = packed_distance("horse.ply", o, &note);
   EXPECT_LE(d.rel(d.rms), o.target_error);
   EXPECT_LE(d.rel(d.max), prm::pipeline::kDefaultMaxErrorPerTarget * o.target_error);
-  EXPECT_NE(r.search_note.find("the smallest within the bound"), std::string::npos) << r.search_note;
+  EXPECT_NE(note.find("the smallest within the bound"), std::string::npos) << note;
 }
 
 // When none of the search's refined attempts meets 8x, the one with the smallest max within kNoBoundBytes (5%) of the
@@ -301,14 +301,11 @@ TEST(PackMaxErrorHeavy, NoAttemptWithin8xKeepsTheNearestWithinFivePercent) {
   PackOptions o;
   o.target_error = 1.3e-4;
   o.effort = prm::pipeline::kMaxEffort;
-  const prm::Mesh input = shared_mesh("horse.ply");
-  const prm::pipeline::PackResult r = prm::pipeline::pack(input, o);
-  const prm::DistanceReport d = decoded_distance(input, r);
-  std::printf("horse at 1.3e-4, effort 9: %zu bytes, %d bits x%.4g, RMS %.3e, max %.3e\n%s\n", r.stream.size(), r.bits,
-              r.step_scale, d.rel(d.rms), d.rel(d.max), r.search_note.c_str());
+  std::string note;
+  const prm::DistanceReport d = packed_distance("horse.ply", o, &note);
   EXPECT_LE(d.rel(d.rms), o.target_error);
   EXPECT_LE(d.rel(d.max), 9.0 * o.target_error);
-  EXPECT_NE(r.search_note.find("the nearest to it within 5%"), std::string::npos) << r.search_note;
+  EXPECT_NE(note.find("the nearest to it within 5%"), std::string::npos) << note;
 }
 
 // hear: `prm remesh horse.ply --target-error 2e-4` (12 bits, refined as pack refines) spent the refinement's vertex
