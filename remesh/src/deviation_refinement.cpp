@@ -572,9 +572,9 @@ bool insert_across_crease(Mesh& m, const std::vector<std::vector<uint32_t>>& ver
   const std::array<double, 3> bc = barycentric(m, t, d.at);
   const int k = static_cast<int>(std::min_element(bc.begin(), bc.end()) - bc.begin());
   const uint32_t a = t[static_cast<size_t>((k + 1) % 3)], b = t[static_cast<size_t>((k + 2) % 3)];
-  const int64_t g = other_face(m, vertex_faces, a, b, d.face);
-  if (g < 0 || touched[static_cast<size_t>(g)]) return false;
-  const uint32_t gf = static_cast<uint32_t>(g);
+  FaceAcross across;
+  if (!face_across(m, vertex_faces, touched, a, b, d.face, across)) return false;
+  const uint32_t gf = across.face;
   const Tri u = m.triangles[gf];
   // (squared distance of its midpoint to the point, corner of u opposite it)
   std::vector<std::pair<double, int>> edges;
