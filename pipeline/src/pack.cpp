@@ -612,8 +612,8 @@ EffortPlan effort_plan(int effort) {
     case 1: p.steps = 1; p.search_samples_per_face = 2; p.lambda_rounds = 3; p.grid_tolerance = 0.1; p.accept_error = 0.85; break;
     case 2: p.steps = 1; p.search_samples_per_face = 4; p.lambda_rounds = 4; p.grid_tolerance = 0.06; p.accept_error = 0.9; break;
     case 3:
-      p.steps = 1; p.defer_heights = true; p.coarser_step_from_grid = 15; p.search_samples_per_face = 4; p.lambda_rounds = 4;
-      p.predicted_heights_only = true;
+      p.steps = 1; p.defer_heights = true; p.coarser_step_from_grid = 15; p.search_samples_per_face = 4;
+      p.lambda_rounds = 4; p.predicted_heights_only = true;
       break;
     case 4: p.steps = 2; p.defer_heights = true; p.search_samples_per_face = 4; break;
     case 5: p.steps = 2; p.search_samples_per_face = 4; break;
