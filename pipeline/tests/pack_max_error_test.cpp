@@ -330,12 +330,14 @@ prm::DistanceReport remesh_distance(const char* file, double target_error) {
 // the split across the crease (insert_across_crease) the worst is the ear (bench/README.md "Worst-case error", hear):
 // 9.40x as Metro's default samples see it, 10.2x with 5M samples (hfold: the peak is the midpoint of a lattice edge
 // across a 148-degree groove, between the refinement's probes). hfold's descent (kDescendGain) mends the ear's
-// straying lattice vertex, after which the default samples find that peak: 10.29x. Still fails with 3% (11.1x).
+// straying lattice vertex, after which the default samples find that peak: 10.29x. hgroove: that edge lies along the
+// rim of the thin ear (a knife edge, not a groove); after the rounds an end of it is moved so that the edge follows
+// the input (move_groove_end): 8.57x (9.19x with 5M samples). Still fails with 3% (11.1x).
 TEST(PackMaxErrorHeavy, RemeshOfTheHorseKeepsRefiningPastItsOldBudget) {
   const double target = 2e-4;
   const prm::DistanceReport d = remesh_distance("horse.ply", target);
   EXPECT_LE(d.rel(d.rms), target);
-  EXPECT_LE(d.rel(d.max), 10.5 * target);
+  EXPECT_LE(d.rel(d.max), 9.0 * target);
 }
 
 // hfold: `prm remesh feline.off --target-error 2e-4` was 8.27x, its worst a lattice vertex that two rim moves for its

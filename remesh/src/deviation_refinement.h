@@ -56,6 +56,9 @@ struct DeviationRefinementOptions {
   // A mesh triangle whose dense probes come within 0.9x the bound is probed again on a grid twice as fine (needs
   // dense_probes; h22max6: the horse's worst place lay between the probes of a face at 0.99x the bound).
   bool fine_probes = true;
+  // After the rounds, an end of a sharp edge whose midpoint strays past the bound is moved so that the edge follows
+  // the input (hgroove: the horse's ear, a knife edge, where a split turns a face away from the input).
+  bool groove_moves = true;
   // After the rounds, an inserted vertex whose fan of 3 or 4 triangles can be triangulated again without it, within
   // the bound, is removed (h22max8: needs thin_sheets and dense_probes).
   bool prune = true;
