@@ -887,10 +887,16 @@ void for_each_sharp_midpoint(const Mesh& m, const std::vector<std::vector<uint32
 // follows the input, to the place where its fan's worst (dense probes, its edges' midpoints, its own distance) is
 // least, when that is less than before, no face turns over against its old normal and all face the input, and no
 // input point near the fan goes past the bound (below). The ends in d.face's order. A lattice vertex moved becomes
-// irregular. False when neither is moved.
+// irregular. False when neither is moved. `mesh_tree`: the mesh's tree, built again here only when a move kept since
+// its last build made it stale (most sites move nothing: one build a round, not one a site).
+struct MeshTree {
+  AabbTree tree;
+  bool stale = true;
+};
 bool move_groove_end(PrmMesh& prm, const std::vector<std::vector<uint32_t>>& vertex_faces, const Mesh& input,
                      const AabbTree& input_tree, const DeviationRefinementOptions& options, const InputFacing& facing,
-                     const std::vector<uint8_t>& boundary, std::vector<uint8_t>& touched, const Deviation& d) {
+                     const std::vector<uint8_t>& boundary, std::vector<uint8_t>& touched, MeshTree& mesh_tree,
+                     const Deviation& d) {
   Mesh& m = prm.mesh;
   const double bound = options.max_deviation;
   const Tri t = m.triangles[d.face];
@@ -924,14 +930,17 @@ bool move_groove_end(PrmMesh& prm, const std::vector<std::vector<uint32_t>>& ver
       for (uint32_t x : w) reach2 = std::max(reach2, norm2(m.positions[x] - old));
     reach2 = (std::sqrt(reach2) + 4 * bound) * (std::sqrt(reach2) + 4 * bound);
     // Only those whose closest face of the mesh is one of the fan's: a nearer face elsewhere stays where it is.
-    const AabbTree mesh_tree(m);
+    if (mesh_tree.stale) {
+      mesh_tree.tree = AabbTree(m);
+      mesh_tree.stale = false;
+    }
     std::vector<Vec3> near;
     AabbTree::Hit hint;
     for (const Tri& w : input.triangles) {
       const Vec3 &a = input.positions[w[0]], &b = input.positions[w[1]], &c = input.positions[w[2]];
       if (norm2(a - old) > reach2 && norm2(b - old) > reach2 && norm2(c - old) > reach2) continue;
       for (const Vec3& x : {a, b, c, (1.0 / 3) * (a + b + c), 0.5 * (a + b), 0.5 * (b + c), 0.5 * (c + a)}) {
-        mesh_tree.closest(x, hint);
+        mesh_tree.tree.closest(x, hint);
         if (hint.found() &&
             std::find(vertex_faces[v].begin(), vertex_faces[v].end(), hint.face) != vertex_faces[v].end())
           near.push_back(x);
@@ -972,6 +981,7 @@ bool move_groove_end(PrmMesh& prm, const std::vector<std::vector<uint32_t>>& ver
     if (best < before) {
       if (lattice) prm.vertex_relief[v] = -1;  // off its lattice place (as descend_vertex's free move)
       for (uint32_t h : vertex_faces[v]) touched[h] = 1;
+      mesh_tree.stale = true;
       return true;
     }
   }
@@ -1591,9 +1601,10 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
     check.facing.index_cells(m);
     std::vector<uint8_t> touched(m.triangles.size(), 0);
     size_t moved_this_round = 0;
+    MeshTree mesh_tree;
     for (const Deviation& d : far)
       if (!touched[d.face] &&
-          move_groove_end(prm, vertex_faces, input, input_tree, options, check.facing, boundary, touched, d))
+          move_groove_end(prm, vertex_faces, input, input_tree, options, check.facing, boundary, touched, mesh_tree, d))
         ++moved_this_round;
     if (moved_this_round == 0) break;
     st.moved += moved_this_round;
