@@ -672,6 +672,12 @@ struct NearInputs {
   std::vector<std::vector<uint32_t>> of_face;
 };
 
+// The tip moves made (move_rim_vertex's tip_move, at most one per vertex over all rounds) and where each went.
+struct TipMoves {
+  std::vector<uint8_t> made;
+  std::vector<Vec3> to;
+};
+
 // A thin sheet's rim (issue 22): where the resampling cut a tip off, the mesh's closest point to the missed input
 // vertex lies on the seam that closes the sheet, between irregular vertices. Moving one of them out to the input
 // vertex (or part of the way) follows the tip at no cost in vertices. Tries the face's irregular vertices, nearest
@@ -681,19 +687,22 @@ struct NearInputs {
 // itself then stray less; and (lattice_reach) for a missed input point, along its axis towards it, when the point
 // then lies at least 10% nearer its faces and they stay within the bound (a move instead of a new vertex, which
 // costs more bytes). False when no move is kept.
-// With `reached` (a tip move, htail: for a missed input point that no move, split or facing-face split above served):
-// an irregular vertex not moved so before (`reached`, once per vertex over all rounds, apart from kMaxMoves) moves
+// With tip_move (htail: for a missed input point that no move, split or facing-face split above served): an
+// irregular vertex not moved so before (`tips`, once per vertex over all rounds, apart from kMaxMoves) moves
 // out to the point even where its faces then stray beyond the bound, as long as they stray no farther than the point
 // was missed and the point comes no farther from them: a thin sheet's tip beyond the rim (the horse's tail at
 // 1.3e-4) is missed by 1.6x the bound while its rim vertex, moved there, makes a face across the notch beside the tip
 // stray 1.25x; later rounds split that face.
 // With `near` (kRimGuardAfter), a move must also keep the input vertices closest to the vertex's faces within the
 // bound of those faces or as near as they were.
+// A tip move is kept from any round on: a later move of that vertex for a straying point must keep the point it went
+// to (`tips`) within the bound of its faces when it is (h115: the horse's 115-degree place at 1.3e-4, an input
+// vertex on a sharp crease whose tip move the next round's move for a straying point undid; no later step reached it).
 bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, const PrmMesh& prm,
                      const AabbTree& input_tree, const DeviationRefinementOptions& options, double bound2,
                      const InputFacing& facing, std::vector<uint8_t>& touched, std::vector<uint8_t>& moved,
                      const std::vector<uint8_t>& boundary, const NearInputs* near, const Deviation& d,
-                     std::vector<uint8_t>* reached = nullptr) {
+                     TipMoves& tips, bool tip_move = false) {
   const Tri t = m.triangles[d.face];
   std::array<uint32_t, 3> order = {t[0], t[1], t[2]};
   std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
@@ -706,8 +715,8 @@ bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_f
     // least-squares heights move it), for a straying point or (lattice_reach) towards a missed input point.
     const bool lattice = v < prm.vertex_relief.size() && prm.vertex_relief[v] >= 0;
     if (lattice && (!options.lattice_moves || (!mesh_point && !options.lattice_reach))) continue;
-    if (reached != nullptr && (lattice || mesh_point || v >= reached->size() || (*reached)[v])) continue;
-    if (v >= moved.size() || (reached == nullptr && moved[v] >= kMaxMoves)) continue;  // inserted in this round, or moved enough
+    if (tip_move && (lattice || mesh_point || v >= tips.made.size() || tips.made[v])) continue;
+    if (v >= moved.size() || (!tip_move && moved[v] >= kMaxMoves)) continue;  // inserted in this round, or moved enough
     if (v < boundary.size() && boundary[v]) continue;  // the input's boundary stays where it is
     const std::vector<uint32_t>& faces = vertex_faces[v];
     if (std::any_of(faces.begin(), faces.end(), [&](uint32_t f) { return touched[f] != 0; })) continue;
@@ -747,6 +756,14 @@ bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_f
         if (f < near->of_face.size())
           for (uint32_t u : near->of_face[f])
             guarded.push_back({near->input->positions[u], std::max(bound2, (*near->hits)[u].distance2)});
+    if (mesh_point && v < tips.made.size() && tips.made[v]) {
+      double tip2 = std::numeric_limits<double>::infinity();
+      for (uint32_t f : faces) {
+        const Tri& w = m.triangles[f];
+        tip2 = std::min(tip2, point_triangle_distance2(tips.to[v], m.positions[w[0]], m.positions[w[1]], m.positions[w[2]]));
+      }
+      if (tip2 <= bound2) guarded.push_back({tips.to[v], bound2});
+    }
     const auto guarded_near = [&] {
       for (const auto& [q, allowed2] : guarded) {
         double best = std::numeric_limits<double>::infinity();
@@ -759,7 +776,7 @@ bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_f
       return true;
     };
     const double before2 = deviation2();
-    const double allowed2 = reached != nullptr ? std::max({bound2, before2, d.distance2})
+    const double allowed2 = tip_move           ? std::max({bound2, before2, d.distance2})
                             : mesh_point       ? before2 * 0.999
                                                : std::max(bound2, before2);
     for (double share : kShares) {
@@ -771,11 +788,12 @@ bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_f
       }
       if (ok && lattice && !mesh_point) ok = missed2() < 0.81 * missed_before2;
       if (ok) ok = guarded_near();
-      if (ok && reached != nullptr) ok = missed2() <= d.distance2;
+      if (ok && tip_move) ok = missed2() <= d.distance2;
       if (ok && facing.keeps(m, tris) && deviation2() <= allowed2) {
         for (uint32_t f : faces) touched[f] = 1;
-        if (reached != nullptr) {
-          (*reached)[v] = 1;
+        if (tip_move) {
+          tips.made[v] = 1;
+          tips.to[v] = d.wanted;
         } else {
           ++moved[v];
         }
@@ -1145,7 +1163,7 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
   }
   if (options.facing_guard) check.facing = InputFacing(&input, &input_tree, &prm.frame, m);
   std::vector<uint8_t> moved;  // rim moves per vertex, over all rounds (at most kMaxMoves: no back and forth)
-  std::vector<uint8_t> reached;  // tip moves per vertex (move_rim_vertex's `reached`: at most one)
+  TipMoves tips;  // per vertex: its tip move (move_rim_vertex's tip_move: at most one) and the point it went to
   // The pr>in measures (against the input, which does not change) of the mesh's faces and vertices, kept from round
   // to round: only the faces a round changed (`stale`, every face at first) and their vertices are measured again,
   // which gives the same figures as measuring all (h22max5: the probes of every face in every round were most of
@@ -1372,7 +1390,8 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
       for (uint32_t v : m.triangles[f]) vertex_faces[v].push_back(f);
     std::vector<uint8_t> touched(m.triangles.size(), 0);
     moved.resize(m.positions.size(), 0);
-    reached.resize(m.positions.size(), 0);
+    tips.made.resize(m.positions.size(), 0);
+    tips.to.resize(m.positions.size());
     check.facing.index_cells(m);
     NearInputs near;
     if (st.rounds > kRimGuardAfter) {
@@ -1389,7 +1408,7 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
       const size_t facing_refusals = check.facing.refusals;
       if (options.thin_sheets &&
           move_rim_vertex(m, vertex_faces, prm, input_tree, options, bound2, check.facing, touched, moved, boundary,
-                          st.rounds > kRimGuardAfter ? &near : nullptr, d)) {
+                          st.rounds > kRimGuardAfter ? &near : nullptr, d, tips)) {
         ++st.moved;
         ++inserted_this_round;
         continue;
@@ -1419,7 +1438,7 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
         ++inserted_this_round;
       } else if (options.thin_sheets && !strays_from_input(d) &&
                  move_rim_vertex(m, vertex_faces, prm, input_tree, options, bound2, check.facing, touched, moved,
-                                 boundary, st.rounds > kRimGuardAfter ? &near : nullptr, d, &reached)) {
+                                 boundary, st.rounds > kRimGuardAfter ? &near : nullptr, d, tips, true)) {
         ++st.moved;
         ++inserted_this_round;
       } else if (options.thin_sheets && !strays_from_input(d) && st.rounds > kCrossAfter &&
