@@ -272,13 +272,15 @@ TEST(PackMaxErrorHeavy, DefaultPackKeepsTheHorseWithin8x) {
 // vertex out to it made a face across the notch beside it stray 1.25x the bound; the tip move (move_rim_vertex's
 // `reached`) takes that trade, and later rounds split the face: 9.88x (still over 8x: bench/README.md "Worst-case
 // error", htail). hcrease's trade (a missed point's split may stray within 0.8x its distance from the fifth round) and
-// rim guard: 9.42x. The bound below fails without them (htail alone: 9.88x).
+// rim guard: 9.42x (htail alone: 9.88x). h115: the next tail point, whose every split off the input left a face
+// facing away, is reached by the split with its new vertex on the input (reach_onto_input, now the last step), and
+// the 115-degree place keeps its tip move: 8.08x. The bound below fails without reach_onto_input (9.42x).
 TEST(PackMaxErrorHeavy, HorseTailTipComesNearerAtOnePointThreeEMinus4) {
   PackOptions o;
   o.target_error = 1.3e-4;
   const prm::DistanceReport d = packed_distance("horse.ply", o);
   EXPECT_LE(d.rel(d.rms), o.target_error);
-  EXPECT_LE(d.rel(d.max), 9.6 * o.target_error);
+  EXPECT_LE(d.rel(d.max), 8.5 * o.target_error);
 }
 
 // The largest distance to `to` of the points of `from`'s triangles with a corner within `radius` of `at`, on a
