@@ -386,10 +386,11 @@ AabbTree::Hit AabbTree::closest(const Vec3& p, double bound2) const {
 void AabbTree::closest(const Vec3& p, Hit& hint) const {
   if (!hint.found() || hint.face >= slot_.size()) return search(p, hint, HUGE_VAL);
   // The hint's triangle is usually the answer or close to it: its exact distance is the tightest start bound.
-  const Triangle& t = triangles_[slot_[hint.face]];
+  const uint32_t slot = slot_[hint.face];
+  const Triangle& t = triangles_[slot];
   const Vec3 q = closest_point_on_triangle(p, points_[t.a], points_[t.b], points_[t.c]);
   hint.point = q;
-  search(p, hint, norm2(p - q));
+  search(p, hint, norm2(p - q), slot);
 }
 
 bool AabbTree::well_inside(const Vec3& p, uint32_t face) const {
@@ -475,7 +476,7 @@ bool AabbTree::within(const Vec3& p, double bound2, Hit& hint) const {
   }
 }
 
-void AabbTree::search(const Vec3& p, Hit& hit, double best) const {
+void AabbTree::search(const Vec3& p, Hit& hit, double best, uint32_t skip) const {
   hit.distance2 = best;
   if (pairs_.empty()) return;
 
@@ -498,6 +499,7 @@ void AabbTree::search(const Vec3& p, Hit& hit, double best) const {
     bool descend = false;
     if (count > 0) {
       for (uint32_t k = first, end = first + count; k < end; ++k) {
+        if (k == skip) continue;
         const Triangle& t = triangles_[k];
         const Vec3 q = closest_point_on_triangle(p, points_[t.a], points_[t.b], points_[t.c]);
         const double d2 = norm2(p - q);

@@ -303,10 +303,16 @@ PackResult finish_at(const SearchContext& ctx, const PackOptions& options, Remes
   // the input either (issue 22 item 3; the refinement's small triangles beside lattice vertices: CGAL's elephant at
   // 5e-4, one): a lambda whose stream has more than the rounded heights' is refused like one that misses the target.
   const bool facing_guard = ctx.plan.local_refinement && options.refine_facing_guard && !(options.max_error > 0);
+  // The rounded heights' decoded mesh and its turned triangles: a lambda's stream moves some heights only, and its
+  // other triangles are not tested again.
+  TurnedTriangles base;
   const size_t base_turned = [&] {
     if (!facing_guard) return size_t{0};
     const auto decoded = codec::decode(out.stream.data(), out.stream.size());
-    return decoded.ok() ? count_turned(to_mesh(decoded.value), ctx.full.mesh(), ctx.full.tree()) : size_t{0};
+    if (!decoded.ok()) return size_t{0};
+    base.mesh = to_mesh(decoded.value);
+    base.turned = turned_triangles(base.mesh, ctx.full.mesh(), ctx.full.tree());
+    return base.turned.size();
   }();
   // Such a lambda's stream is encoded again with the rounded heights at the corners of its turned triangles
   // (PrmOptions::rounded_heights), kFacingRounds times at most, so that its heights still apply elsewhere (hrefine3:
@@ -321,7 +327,7 @@ PackResult finish_at(const SearchContext& ctx, const PackOptions& options, Remes
       bool again = false;
       const auto check = [&](const Mesh& m) {
         if (!facing_guard) return measure_kept(m);
-        const std::vector<size_t> turned = turned_triangles(m, ctx.full.mesh(), ctx.full.tree());
+        const std::vector<size_t> turned = turned_triangles(m, ctx.full.mesh(), ctx.full.tree(), &base);
         if (turned.size() <= base_turned) return measure_kept(m);
         if (round < kFacingRounds && o.height_lambda > 0) {
           held.resize(out.remesh.prm.mesh.positions.size(), 0);
@@ -585,6 +591,10 @@ EffortPlan effort_plan(int effort) {
   // quantization steps or more (coarser_step_from_grid): on the paper's models only the venus, whose stream went
   // from +7.8% to +0.06% against effort 9 for about the same CPU; on a smooth sphere it cost 1.5-5% at three of four
   // targets (bench/README.md "pack effort", eighth round).
+  // Effort 3 codes the heights by linear prediction only (predicted_heights_only), as effort 0 does: its search's
+  // three rounded-heights encodes on the venus at 1.3e-4 wrote the patch section eight times each; the streams of the
+  // paper's four models and armadillo, camel, bunny00 are the same sizes (bench/README.md "pack effort", sixteenth
+  // round).
   // Effort 0 also cheapens the seam error flips (one closest-point sample per triangle instead of seven, their mean
   // error over every 16th face), measures its lambda round at full density (the check reuses it) and skips that
   // round when the rounded heights are at 0.97 of the target or more: 15-20% fewer CPU samples on the venus and the
@@ -601,7 +611,10 @@ EffortPlan effort_plan(int effort) {
       break;
     case 1: p.steps = 1; p.search_samples_per_face = 2; p.lambda_rounds = 3; p.grid_tolerance = 0.1; p.accept_error = 0.85; break;
     case 2: p.steps = 1; p.search_samples_per_face = 4; p.lambda_rounds = 4; p.grid_tolerance = 0.06; p.accept_error = 0.9; break;
-    case 3: p.steps = 1; p.defer_heights = true; p.coarser_step_from_grid = 15; p.search_samples_per_face = 4; p.lambda_rounds = 4; break;
+    case 3:
+      p.steps = 1; p.defer_heights = true; p.coarser_step_from_grid = 15; p.search_samples_per_face = 4;
+      p.lambda_rounds = 4; p.predicted_heights_only = true;
+      break;
     case 4: p.steps = 2; p.defer_heights = true; p.search_samples_per_face = 4; break;
     case 5: p.steps = 2; p.search_samples_per_face = 4; break;
     case 6: p.steps = 3; p.search_samples_per_face = 4; break;

@@ -1,5 +1,8 @@
 #include "prm/pipeline/stream_check.h"
 
+#include <cstdint>
+#include <vector>
+
 #include "prm/aabb_tree.h"
 #include "prm/mesh_repair.h"
 #include "prm/mesh_validate.h"
@@ -22,12 +25,28 @@ size_t count_turned(const Mesh& m, const Mesh& reference, const AabbTree& refere
   return turned_triangles(m, reference, reference_tree).size();
 }
 
-std::vector<size_t> turned_triangles(const Mesh& m, const Mesh& reference, const AabbTree& reference_tree) {
+std::vector<size_t> turned_triangles(const Mesh& m, const Mesh& reference, const AabbTree& reference_tree,
+                                     const TurnedTriangles* known) {
+  // `known` answers for a triangle whose corners are where they were in known->mesh (the test reads only them).
+  const bool same_triangles = known && known->mesh.triangles == m.triangles &&
+                              known->mesh.positions.size() == m.positions.size();
+  std::vector<uint8_t> known_turned;
+  if (same_triangles) {
+    known_turned.assign(m.triangles.size(), 0);
+    for (const size_t i : known->turned) known_turned[i] = 1;
+  }
+  const auto same_corners = [&](const Tri& t) {
+    return m.positions[t[0]] == known->mesh.positions[t[0]] && m.positions[t[1]] == known->mesh.positions[t[1]] &&
+           m.positions[t[2]] == known->mesh.positions[t[2]];
+  };
   std::vector<size_t> turned;
   for (size_t i = 0; i < m.triangles.size(); ++i) {
     const Tri& t = m.triangles[i];
-    if (!faces_surface(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]], reference, reference_tree))
-      turned.push_back(i);
+    const bool is_turned =
+        same_triangles && same_corners(t)
+            ? known_turned[i] != 0
+            : !faces_surface(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]], reference, reference_tree);
+    if (is_turned) turned.push_back(i);
   }
   return turned;
 }

@@ -91,8 +91,10 @@ class AabbTree {
   // Renumbers the pairs in depth-first order (side 0's subtree right after its parent): the parallel build numbers
   // its upper levels in the order its threads claimed them. The tree, and every query's order and answer, stay the same.
   void order_depth_first();
-  // Depth-first search for a point closer than sqrt(best2); updates hit when it finds one.
-  void search(const Vec3& p, Hit& hit, double best2) const;
+  // Depth-first search for a point closer than sqrt(best2); updates hit when it finds one. Triangle `skip` (a slot
+  // in triangles_, or kNoFace) is not tested: the hinted query has tested it already, and its distance, best2, could
+  // not be beaten by itself.
+  void search(const Vec3& p, Hit& hit, double best2, uint32_t skip = kNoFace) const;
 
   std::vector<NodePair> pairs_;
   std::vector<Triangle> triangles_;  // in leaf order

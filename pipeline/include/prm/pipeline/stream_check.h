@@ -22,8 +22,16 @@ struct StreamCheck {
 StreamCheck check_decoded(const codec::DecodedMesh& decoded, const Mesh* reference);
 // StreamCheck::turned of mesh m against reference (whose tree is reference_tree).
 size_t count_turned(const Mesh& m, const Mesh& reference, const AabbTree& reference_tree);
-// The triangles of m that count_turned counts, in m's order.
-std::vector<size_t> turned_triangles(const Mesh& m, const Mesh& reference, const AabbTree& reference_tree);
+// A mesh and its turned triangles (turned_triangles), kept to test another mesh of the same triangles against.
+struct TurnedTriangles {
+  Mesh mesh;
+  std::vector<size_t> turned;
+};
+// The triangles of m that count_turned counts, in m's order. known: where m has known->mesh's triangles, a triangle
+// whose three corners are where they were there is taken from known->turned instead of being tested again (`pack`'s
+// heights: the lambda streams of one mesh move some heights only).
+std::vector<size_t> turned_triangles(const Mesh& m, const Mesh& reference, const AabbTree& reference_tree,
+                                     const TurnedTriangles* known = nullptr);
 
 // What `pack` remeshes: the mesh itself when the remesher takes it as it is, otherwise its repair (prm::InputError
 // when it cannot be repaired).
