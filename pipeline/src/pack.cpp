@@ -472,7 +472,7 @@ PackResult finish_at(const SearchContext& ctx, const PackOptions& options, Remes
       out.remesh.error = remesh::ErrorEstimate{d.rel(d.rms), d.rel(d.max)};
     }
     bool met = meets(out.remesh.error);
-    int k = 0;  // the chosen lambda's index
+    int k = 0;  // the kept lambda's index (the search's choice, or the smaller one the check falls back to)
     while (k < static_cast<int>(std::size(kHeightLambdas)) && kHeightLambdas[k] < out.codec_options.height_lambda) ++k;
     for (int j = k - 1; !met && out.codec_options.height_lambda > 0 && j >= -1; --j) {
       codec::PrmOptions o = out.codec_options;
@@ -486,6 +486,7 @@ PackResult finish_at(const SearchContext& ctx, const PackOptions& options, Remes
       out.report = report;
       out.remesh.error = e;
       keep_options(o);
+      k = j;  // the heights' guard below starts under it (h115b: it measured the check's lambda again)
     }
     // --local-refinement (no max_error): the heights' freedom must not undo the refinement (h22max6: a variant's venus
     // was 1.37e-3 with rounded heights and 1.65e-3 decoded). When the stream's max passes kDefaultMaxErrorPerTarget x
