@@ -13,6 +13,7 @@
 #include "prm/codec.h"
 #include "prm/mesh_io.h"
 #include "prm/metro_distance.h"
+#include "prm/vec3.h"
 #include "prm/pipeline/codec_bridge.h"
 #include "prm/pipeline/pack.h"
 #include "prm/remesh/remesh.h"
@@ -271,13 +272,55 @@ TEST(PackMaxErrorHeavy, DefaultPackKeepsTheHorseWithin8x) {
 // vertex out to it made a face across the notch beside it stray 1.25x the bound; the tip move (move_rim_vertex's
 // `reached`) takes that trade, and later rounds split the face: 9.88x (still over 8x: bench/README.md "Worst-case
 // error", htail). hcrease's trade (a missed point's split may stray within 0.8x its distance from the fifth round) and
-// rim guard: 9.42x. The bound below fails without them (htail alone: 9.88x).
+// rim guard: 9.42x (htail alone: 9.88x). h115: the next tail point, whose every split off the input left a face
+// facing away, is reached by the split with its new vertex on the input (reach_onto_input, now the last step), and
+// the 115-degree place keeps its tip move: 8.08x. The bound below fails without reach_onto_input (9.42x).
 TEST(PackMaxErrorHeavy, HorseTailTipComesNearerAtOnePointThreeEMinus4) {
   PackOptions o;
   o.target_error = 1.3e-4;
   const prm::DistanceReport d = packed_distance("horse.ply", o);
   EXPECT_LE(d.rel(d.rms), o.target_error);
-  EXPECT_LE(d.rel(d.max), 9.6 * o.target_error);
+  EXPECT_LE(d.rel(d.max), 8.5 * o.target_error);
+}
+
+// The largest distance to `to` of the points of `from`'s triangles with a corner within `radius` of `at`, on a
+// barycentric grid of 10 divisions a side.
+double sampled_distance_near(const prm::Mesh& from, const prm::Mesh& to, const prm::Vec3& at, double radius) {
+  using prm::operator+, prm::operator-, prm::operator*;
+  const prm::AabbTree tree(to);
+  double worst = 0;
+  for (const prm::Tri& t : from.triangles) {
+    const prm::Vec3 &a = from.positions[t[0]], &b = from.positions[t[1]], &c = from.positions[t[2]];
+    if (std::min({prm::norm2(a - at), prm::norm2(b - at), prm::norm2(c - at)}) > radius * radius) continue;
+    for (int p = 0; p <= 10; ++p)
+      for (int q = 0; p + q <= 10; ++q)
+        worst = std::max(worst, std::sqrt(tree.closest(0.1 * (double(p) * a + double(q) * b + double(10 - p - q) * c)).distance2));
+  }
+  return worst;
+}
+
+// h115: the horse's 115-degree place at 1.3e-4, an input vertex on a sharp crease (-0.0037, 0.0287, -0.0618) beside
+// the edge between a lattice vertex and an irregular one. The irregular vertex's tip move took it there in round 2;
+// in round 3 its move for a straying point of one of its faces took it back, and from round 5 every step for that
+// vertex and for a point of the crease beside it (1.40x the refinement's bound) was refused. A tip move is now kept
+// against such moves (move_rim_vertex's `tips`). Measured here (both directions, input and decoded triangles with a
+// corner within 1.5e-3 of the place, 10 divisions a side; the horse's diagonal is 0.253): 1.226e-3 of the diagonal
+// (9.43x the target) before, 1.015e-3 (7.81x) now; prm_bench_max_error_sites: 1.190e-3 -> 1.051e-3.
+TEST(PackMaxErrorHeavy, HorseCreaseVertexKeepsItsTipMoveAtOnePointThreeEMinus4) {
+  PackOptions o;
+  o.target_error = 1.3e-4;
+  const prm::Mesh input = shared_mesh("horse.ply");
+  const prm::pipeline::PackResult r = prm::pipeline::pack(input, o);
+  const auto decoded = prm::codec::decode(r.stream.data(), r.stream.size());
+  ASSERT_TRUE(decoded.ok()) << decoded.status.message;
+  const prm::Mesh out = prm::pipeline::to_mesh(decoded.value);
+  const prm::DistanceReport d = decoded_distance(input, r);
+  const prm::Vec3 place = {-0.0037, 0.0290, -0.0618};
+  const double missed = d.rel(sampled_distance_near(input, out, place, 1.5e-3)),
+               strays = d.rel(sampled_distance_near(out, input, place, 1.5e-3));
+  std::printf("horse 1.3e-4, %zu bytes: the 115-degree place missed by %.3e, strays %.3e (max %.3e)\n",
+              r.stream.size(), missed, strays, d.rel(d.max));
+  EXPECT_LE(std::max(missed, strays), 8.2 * o.target_error);
 }
 
 // hsearch: at effort 4 the smaller unrefined attempt (11 bits x1.542) refines to 10.92x the target on the horse at

@@ -428,10 +428,11 @@ bool split_in_three(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_fa
 // wanted point or, where that turns a triangle over (beyond a corner or a sharp crease), part of the way there from
 // the edge (kShares); with along_normal (a straying point), then at the input along the pair's normal below the point
 // on the edge. nearer2 > 0: only a place whose four triangles come nearer d's wanted point than sqrt(nearer2). trade2:
-// StrayCheck::passes. False (m unchanged) when every place turns one over or fails the check.
+// StrayCheck::passes. onto_input: each place moved to the input's closest point to it (reach_onto_input). False
+// (m unchanged) when every place turns one over or fails the check.
 bool split_edge(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std::vector<uint8_t>& touched,
                 const AabbTree& input_tree, const StrayCheck& check, bool along_normal, double trade2,
-                const Deviation& d, uint32_t f, int k, uint32_t nv, double nearer2 = 0) {
+                const Deviation& d, uint32_t f, int k, uint32_t nv, double nearer2 = 0, bool onto_input = false) {
   const Tri t = m.triangles[f];
   const Vec3 old_normal = face_normal(m, t);
   const uint32_t a = t[static_cast<size_t>((k + 1) % 3)], b = t[static_cast<size_t>((k + 2) % 3)],
@@ -452,6 +453,7 @@ bool split_edge(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces,
   for (const Vec3& target : targets)
     for (double share : kShares) {
       m.positions[nv] = on_edge + share * (target - on_edge);
+      if (onto_input) m.positions[nv] = input_tree.closest(m.positions[nv]).point;
       if (nearer2 > 0) {
         double nearest = std::numeric_limits<double>::infinity();
         for (const Tri& w : {mine[0], mine[1], theirs[0], theirs[1]})
@@ -597,6 +599,21 @@ bool insert_across_crease(Mesh& m, const std::vector<std::vector<uint32_t>>& ver
   return false;
 }
 
+// reach_onto_input: a missed input point's closest edge split with the new vertex on the input (split_edge's
+// onto_input), kept only where its four triangles come nearer the point than d's distance (as insert_across_crease's;
+// without it, on htail2's strand beside a lattice rim the input ended 1.454 from the mesh instead of 0.938). False
+// when it is not made.
+bool insert_onto_input(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std::vector<uint8_t>& touched,
+                       const AabbTree& input_tree, const StrayCheck& check, const Deviation& d) {
+  const std::array<double, 3> bc = barycentric(m, m.triangles[d.face], d.at);
+  const int k = static_cast<int>(std::min_element(bc.begin(), bc.end()) - bc.begin());
+  const uint32_t nv = static_cast<uint32_t>(m.positions.size());
+  m.positions.push_back(d.wanted);
+  if (split_edge(m, vertex_faces, touched, input_tree, check, false, 0, d, d.face, k, nv, d.distance2, true)) return true;
+  m.positions.pop_back();
+  return false;
+}
+
 // A missed input point beyond a corner or an edge of the mesh (a thin sheet's tip, cut off by the resampling): a
 // split of the closest face would turn a triangle over, but a face next to it may face the point (the strip that
 // closes the sheet, whose normal points along the sheet). Among the faces around d.face's corners, those facing the
@@ -677,6 +694,12 @@ struct NearInputs {
   std::vector<std::vector<uint32_t>> of_face;
 };
 
+// The tip moves made (move_rim_vertex's tip_move, at most one per vertex over all rounds) and where each went.
+struct TipMoves {
+  std::vector<uint8_t> made;
+  std::vector<Vec3> to;
+};
+
 // A thin sheet's rim (issue 22): where the resampling cut a tip off, the mesh's closest point to the missed input
 // vertex lies on the seam that closes the sheet, between irregular vertices. Moving one of them out to the input
 // vertex (or part of the way) follows the tip at no cost in vertices. Tries the face's irregular vertices, nearest
@@ -686,19 +709,22 @@ struct NearInputs {
 // itself then stray less; and (lattice_reach) for a missed input point, along its axis towards it, when the point
 // then lies at least 10% nearer its faces and they stay within the bound (a move instead of a new vertex, which
 // costs more bytes). False when no move is kept.
-// With `reached` (a tip move, htail: for a missed input point that no move, split or facing-face split above served):
-// an irregular vertex not moved so before (`reached`, once per vertex over all rounds, apart from kMaxMoves) moves
+// With tip_move (htail: for a missed input point that no move, split or facing-face split above served): an
+// irregular vertex not moved so before (`tips`, once per vertex over all rounds, apart from kMaxMoves) moves
 // out to the point even where its faces then stray beyond the bound, as long as they stray no farther than the point
 // was missed and the point comes no farther from them: a thin sheet's tip beyond the rim (the horse's tail at
 // 1.3e-4) is missed by 1.6x the bound while its rim vertex, moved there, makes a face across the notch beside the tip
 // stray 1.25x; later rounds split that face.
 // With `near` (kRimGuardAfter), a move must also keep the input vertices closest to the vertex's faces within the
 // bound of those faces or as near as they were.
+// A tip move is kept from any round on: a later move of that vertex for a straying point must keep the point it went
+// to (`tips`) within the bound of its faces when it is (h115: the horse's 115-degree place at 1.3e-4, an input
+// vertex on a sharp crease whose tip move the next round's move for a straying point undid; no later step reached it).
 bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, const PrmMesh& prm,
                      const AabbTree& input_tree, const DeviationRefinementOptions& options, double bound2,
                      const InputFacing& facing, std::vector<uint8_t>& touched, std::vector<uint8_t>& moved,
                      const std::vector<uint8_t>& boundary, const NearInputs* near, const Deviation& d,
-                     std::vector<uint8_t>* reached = nullptr) {
+                     TipMoves& tips, bool tip_move = false) {
   const Tri t = m.triangles[d.face];
   std::array<uint32_t, 3> order = {t[0], t[1], t[2]};
   std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
@@ -711,8 +737,8 @@ bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_f
     // least-squares heights move it), for a straying point or (lattice_reach) towards a missed input point.
     const bool lattice = v < prm.vertex_relief.size() && prm.vertex_relief[v] >= 0;
     if (lattice && (!options.lattice_moves || (!mesh_point && !options.lattice_reach))) continue;
-    if (reached != nullptr && (lattice || mesh_point || v >= reached->size() || (*reached)[v])) continue;
-    if (v >= moved.size() || (reached == nullptr && moved[v] >= kMaxMoves)) continue;  // inserted in this round, or moved enough
+    if (tip_move && (lattice || mesh_point || v >= tips.made.size() || tips.made[v])) continue;
+    if (v >= moved.size() || (!tip_move && moved[v] >= kMaxMoves)) continue;  // inserted in this round, or moved enough
     if (v < boundary.size() && boundary[v]) continue;  // the input's boundary stays where it is
     const std::vector<uint32_t>& faces = vertex_faces[v];
     if (std::any_of(faces.begin(), faces.end(), [&](uint32_t f) { return touched[f] != 0; })) continue;
@@ -752,6 +778,14 @@ bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_f
         if (f < near->of_face.size())
           for (uint32_t u : near->of_face[f])
             guarded.push_back({near->input->positions[u], std::max(bound2, (*near->hits)[u].distance2)});
+    if (mesh_point && v < tips.made.size() && tips.made[v]) {
+      double tip2 = std::numeric_limits<double>::infinity();
+      for (uint32_t f : faces) {
+        const Tri& w = m.triangles[f];
+        tip2 = std::min(tip2, point_triangle_distance2(tips.to[v], m.positions[w[0]], m.positions[w[1]], m.positions[w[2]]));
+      }
+      if (tip2 <= bound2) guarded.push_back({tips.to[v], bound2});
+    }
     const auto guarded_near = [&] {
       for (const auto& [q, allowed2] : guarded) {
         double best = std::numeric_limits<double>::infinity();
@@ -764,7 +798,7 @@ bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_f
       return true;
     };
     const double before2 = deviation2();
-    const double allowed2 = reached != nullptr ? std::max({bound2, before2, d.distance2})
+    const double allowed2 = tip_move           ? std::max({bound2, before2, d.distance2})
                             : mesh_point       ? before2 * 0.999
                                                : std::max(bound2, before2);
     for (double share : kShares) {
@@ -776,11 +810,12 @@ bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_f
       }
       if (ok && lattice && !mesh_point) ok = missed2() < 0.81 * missed_before2;
       if (ok) ok = guarded_near();
-      if (ok && reached != nullptr) ok = missed2() <= d.distance2;
+      if (ok && tip_move) ok = missed2() <= d.distance2;
       if (ok && facing.keeps(m, tris) && deviation2() <= allowed2) {
         for (uint32_t f : faces) touched[f] = 1;
-        if (reached != nullptr) {
-          (*reached)[v] = 1;
+        if (tip_move) {
+          tips.made[v] = 1;
+          tips.to[v] = d.wanted;
         } else {
           ++moved[v];
         }
@@ -1286,7 +1321,7 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
   }
   if (options.facing_guard) check.facing = InputFacing(&input, &input_tree, &prm.frame, m);
   std::vector<uint8_t> moved;  // rim moves per vertex, over all rounds (at most kMaxMoves: no back and forth)
-  std::vector<uint8_t> reached;  // tip moves per vertex (move_rim_vertex's `reached`: at most one)
+  TipMoves tips;  // per vertex: its tip move (move_rim_vertex's tip_move: at most one) and the point it went to
   // The pr>in measures (against the input, which does not change) of the mesh's faces and vertices, kept from round
   // to round: only the faces a round changed (`stale`, every face at first) and their vertices are measured again,
   // which gives the same figures as measuring all (h22max5: the probes of every face in every round were most of
@@ -1513,7 +1548,8 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
       for (uint32_t v : m.triangles[f]) vertex_faces[v].push_back(f);
     std::vector<uint8_t> touched(m.triangles.size(), 0);
     moved.resize(m.positions.size(), 0);
-    reached.resize(m.positions.size(), 0);
+    tips.made.resize(m.positions.size(), 0);
+    tips.to.resize(m.positions.size());
     check.facing.index_cells(m);
     NearInputs near;
     if (st.rounds > kRimGuardAfter) {
@@ -1530,7 +1566,7 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
       const size_t facing_refusals = check.facing.refusals;
       if (options.thin_sheets &&
           move_rim_vertex(m, vertex_faces, prm, input_tree, options, bound2, check.facing, touched, moved, boundary,
-                          st.rounds > kRimGuardAfter ? &near : nullptr, d)) {
+                          st.rounds > kRimGuardAfter ? &near : nullptr, d, tips)) {
         ++st.moved;
         ++inserted_this_round;
         continue;
@@ -1560,12 +1596,16 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
         ++inserted_this_round;
       } else if (options.thin_sheets && !strays_from_input(d) &&
                  move_rim_vertex(m, vertex_faces, prm, input_tree, options, bound2, check.facing, touched, moved,
-                                 boundary, st.rounds > kRimGuardAfter ? &near : nullptr, d, &reached)) {
+                                 boundary, st.rounds > kRimGuardAfter ? &near : nullptr, d, tips, true)) {
         ++st.moved;
         ++inserted_this_round;
       } else if (options.thin_sheets && !strays_from_input(d) && st.rounds > kCrossAfter &&
                  insert_across_crease(m, vertex_faces, touched, input_tree, check,
                                       st.rounds > kTradeAfter ? kTradeGain * kTradeGain * d.distance2 : 0, d)) {
+        ++st.inserted;
+        ++inserted_this_round;
+      } else if (options.thin_sheets && options.reach_onto_input && !strays_from_input(d) &&
+                 insert_onto_input(m, vertex_faces, touched, input_tree, check, d)) {
         ++st.inserted;
         ++inserted_this_round;
       } else {

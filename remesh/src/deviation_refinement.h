@@ -50,6 +50,11 @@ struct DeviationRefinementOptions {
   // (h22max5: the horse's ear, where the input's closest point lies on one face of a thin sheet and a vertex moved
   // towards it pushes the triangles off the other face). Needs stray_check.
   bool descent_placement = true;
+  // A missed input point that every other step refused (the last one, after the split across the crease): the split
+  // of its closest edge with the new vertex on the input, the input's closest point to each place between the edge
+  // and the point (htail2's step, now last; h115: the horse's tail at 1.3e-4, a thin strand whose far side is nearer
+  // a new face's centroid when the new vertex is off the input, so that face counts as facing away). Needs stray_check.
+  bool reach_onto_input = true;
   // Every input triangle is probed for in>pr in the first round (not only those with a vertex near the bound), and
   // again when its worst probe comes near the bound or its closest faces change (h22max5: bunny_zipper).
   bool all_input_faces = true;

@@ -73,7 +73,7 @@ void finish(PrmMesh& prm, const Mesh& input, const AabbTree& tree, const Resampl
     dro.max_deviation = options.max_deviation;
     dro.thin_sheets = options.refine_thin_sheets;
     dro.lattice_moves = dro.lattice_reach = dro.dense_probes = dro.normal_reach = dro.stray_check =
-        dro.descent_placement = dro.all_input_faces = options.refine_notches;
+        dro.descent_placement = dro.all_input_faces = dro.reach_onto_input = options.refine_notches;
     dro.facing_guard = options.refine_notches && options.refine_facing_guard;
     std::vector<double> face_deviation2;
     const DeviationRefinementStats ds = refine_deviations(prm, input, tree, dro, &face_deviation2);
