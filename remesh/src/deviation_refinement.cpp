@@ -939,7 +939,7 @@ bool move_groove_end(PrmMesh& prm, const std::vector<std::vector<uint32_t>>& ver
   const size_t k = static_cast<size_t>(std::min_element(bc.begin(), bc.end()) - bc.begin());
   const Vec3 mid = 0.5 * (m.positions[t[(k + 1) % 3]] + m.positions[t[(k + 2) % 3]]);
   for (uint32_t v : {t[(k + 1) % 3], t[(k + 2) % 3]}) {
-    if (boundary[v]) continue;
+    if (v < boundary.size() && boundary[v]) continue;  // new vertices are never on the boundary
     const bool lattice = v < prm.vertex_relief.size() && prm.vertex_relief[v] >= 0;
     bool free = true;
     for (uint32_t h : vertex_faces[v]) free = free && !touched[h];
