@@ -172,6 +172,24 @@ std::vector<std::vector<uint32_t>> faces_of_vertices(const Mesh& m) {
   return out;
 }
 
+// The squared distance from p to the nearest of triangles `tris` of m (infinity when there is none).
+template <class Tris>
+double nearest2(const Mesh& m, const Tris& tris, const Vec3& p) {
+  double d = std::numeric_limits<double>::infinity();
+  for (const Tri& t : tris)
+    d = std::min(d, point_triangle_distance2(p, m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]));
+  return d;
+}
+// The same for the faces numbered `faces`.
+double nearest2_of_faces(const Mesh& m, const std::vector<uint32_t>& faces, const Vec3& p) {
+  double d = std::numeric_limits<double>::infinity();
+  for (uint32_t f : faces) {
+    const Tri& t = m.triangles[f];
+    d = std::min(d, point_triangle_distance2(p, m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]));
+  }
+  return d;
+}
+
 // Does every new triangle face the way the triangle it replaces faced (and keep some area)?
 bool faces_agree(const Mesh& m, const Vec3& old_normal, const std::vector<Tri>& tris) {
   const double scale = norm(old_normal);
@@ -413,13 +431,7 @@ bool split_in_three(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_fa
   const std::vector<Tri> tris = {{t[0], t[1], nv}, {t[1], t[2], nv}, {t[2], t[0], nv}};
   for (double share : kShares) {
     m.positions[nv] = from + share * (to - from);
-    if (nearer2 > 0) {
-      double nearest = std::numeric_limits<double>::infinity();
-      for (const Tri& w : tris)
-        nearest =
-            std::min(nearest, point_triangle_distance2(to, m.positions[w[0]], m.positions[w[1]], m.positions[w[2]]));
-      if (nearest >= nearer2) continue;
-    }
+    if (nearer2 > 0 && nearest2(m, tris, to) >= nearer2) continue;
     if (!faces_agree(m, old_normal, tris)) continue;
     if (check.facing.away(m, tris) > 0) {
       if (repaired_insertion(m, vertex_faces, touched, check, nv, {tris, {f, f, f}, {f}})) return true;
@@ -462,13 +474,8 @@ bool split_edge(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces,
     for (double share : kShares) {
       m.positions[nv] = on_edge + share * (target - on_edge);
       if (onto_input) m.positions[nv] = input_tree.closest(m.positions[nv]).point;
-      if (nearer2 > 0) {
-        double nearest = std::numeric_limits<double>::infinity();
-        for (const Tri& w : {mine[0], mine[1], theirs[0], theirs[1]})
-          nearest = std::min(nearest, point_triangle_distance2(d.wanted, m.positions[w[0]], m.positions[w[1]],
-                                                               m.positions[w[2]]));
-        if (nearest >= nearer2) continue;
-      }
+      if (nearer2 > 0 && nearest2(m, std::array<Tri, 4>{mine[0], mine[1], theirs[0], theirs[1]}, d.wanted) >= nearer2)
+        continue;
       if (!faces_agree(m, old_normal, mine) || !faces_agree(m, normal_u, theirs)) continue;
       if (check.facing.away(m, {mine[0], mine[1], theirs[0], theirs[1]}) > 0) {
         const uint32_t gf = static_cast<uint32_t>(g);
@@ -533,13 +540,7 @@ bool insert(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_faces, std
       // The probes leave the vertices out: the new vertex's own distance counts too.
       double worst = std::max(probe_deviation2(m, tris, *check.input_tree, check.bound, check.dense),
                               check.input_tree->closest(m.positions[nv]).distance2);
-      if (!strays_from_input(d)) {
-        double nearest = std::numeric_limits<double>::infinity();
-        for (const Tri& w : tris)
-          nearest = std::min(nearest, point_triangle_distance2(d.wanted, m.positions[w[0]], m.positions[w[1]],
-                                                               m.positions[w[2]]));
-        worst = std::max(worst, nearest);
-      }
+      if (!strays_from_input(d)) worst = std::max(worst, nearest2(m, tris, d.wanted));
       return worst;
     };
     const size_t k = static_cast<size_t>(corners[0]);
@@ -770,13 +771,7 @@ bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_f
     // A missed input point a lattice vertex moves for: its distance to the vertex's faces, which the move must cut
     // by at least 10% (the axis may pass it by).
     const auto missed2 = [&] {
-      double best = std::numeric_limits<double>::infinity();
-      for (uint32_t f : faces) {
-        const Tri& w = m.triangles[f];
-        best = std::min(best, point_triangle_distance2(d.wanted, m.positions[w[0]], m.positions[w[1]],
-                                                       m.positions[w[2]]));
-      }
-      return best;
+      return nearest2_of_faces(m, faces, d.wanted);
     };
     const double missed_before2 = lattice && !mesh_point ? missed2() : 0;
     // The input vertices closest to v's faces, each with the squared distance it may come to: the bound or where it was.
@@ -786,22 +781,12 @@ bool move_rim_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_f
         if (f < near->of_face.size())
           for (uint32_t u : near->of_face[f])
             guarded.push_back({near->input->positions[u], std::max(bound2, (*near->hits)[u].distance2)});
-    if (mesh_point && v < tips.made.size() && tips.made[v]) {
-      double tip2 = std::numeric_limits<double>::infinity();
-      for (uint32_t f : faces) {
-        const Tri& w = m.triangles[f];
-        tip2 = std::min(tip2, point_triangle_distance2(tips.to[v], m.positions[w[0]], m.positions[w[1]], m.positions[w[2]]));
-      }
-      if (tip2 <= bound2) guarded.push_back({tips.to[v], bound2});
-    }
+    if (mesh_point && v < tips.made.size() && tips.made[v] && nearest2_of_faces(m, faces, tips.to[v]) <= bound2)
+      guarded.push_back({tips.to[v], bound2});
     const auto guarded_near = [&] {
       for (const auto& [q, allowed2] : guarded) {
-        double best = std::numeric_limits<double>::infinity();
-        for (uint32_t f : faces) {
-          const Tri& w = m.triangles[f];
-          best = std::min(best, point_triangle_distance2(q, m.positions[w[0]], m.positions[w[1]], m.positions[w[2]]));
-        }
-        if (best > allowed2 * 1.0000001) return false;  // (the distance before the move, measured again)
+        // (allowed2: the distance before the move, measured again)
+        if (nearest2_of_faces(m, faces, q) > allowed2 * 1.0000001) return false;
       }
       return true;
     };
@@ -991,13 +976,7 @@ bool move_groove_end(PrmMesh& prm, const std::vector<std::vector<uint32_t>>& ver
     }
     const auto fan_distances2 = [&] {
       std::vector<double> out;
-      for (const Vec3& x : near) {
-        double nearest = std::numeric_limits<double>::infinity();
-        for (const Tri& w : fan)
-          nearest = std::min(nearest,
-                             point_triangle_distance2(x, m.positions[w[0]], m.positions[w[1]], m.positions[w[2]]));
-        out.push_back(nearest);
-      }
+      for (const Vec3& x : near) out.push_back(nearest2(m, fan, x));
       return out;
     };
     const std::vector<double> near_before = fan_distances2();
@@ -1106,9 +1085,7 @@ size_t prune_inserted(Mesh& m, const QuantFrame& frame, size_t first_inserted, c
   std::vector<uint8_t> changed(m.triangles.size(), 0), dead(m.triangles.size(), 0), removed(m.positions.size(), 0);
   // The distance of input point p to the mesh with `tris` in place of the fan: at most this.
   const auto input_distance2 = [&](const Vec3& p, const std::vector<Tri>& tris) {
-    double d = std::numeric_limits<double>::infinity();
-    for (const Tri& t : tris)
-      d = std::min(d, point_triangle_distance2(p, m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]));
+    double d = nearest2(m, tris, p);
     if (d > bound2) {
       const AabbTree::Hit h = tree.closest(p);
       if (h.found() && !changed[h.face]) d = std::min(d, h.distance2);
@@ -1809,11 +1786,7 @@ size_t round_towards_input(PrmMesh& prm, const Mesh& input, const AabbTree& inpu
       if (worst < limit) worst = std::max(worst, probe_deviation2(m, tris, input_tree, bound, true, limit));
       for (uint32_t u : points) {
         if (worst >= limit) break;
-        double best = std::numeric_limits<double>::infinity();
-        for (const Tri& t : tris)
-          best = std::min(best, point_triangle_distance2(far_point[u], m.positions[t[0]], m.positions[t[1]],
-                                                         m.positions[t[2]]));
-        worst = std::max(worst, best);
+        worst = std::max(worst, nearest2(m, tris, far_point[u]));
       }
       return worst;
     };
