@@ -119,9 +119,7 @@ int main(int argc, char** argv) {
   }
   Mesh input = prm::read_mesh(argv[1]);
   if (!prm::validate_mesh(input).ready_for_remesh()) input = prm::repair_mesh(input);
-  std::vector<std::vector<uint32_t>> vertex_faces(input.positions.size());
-  for (uint32_t f = 0; f < input.triangles.size(); ++f)
-    for (uint32_t v : input.triangles[f]) vertex_faces[v].push_back(f);
+  const std::vector<std::vector<uint32_t>> vertex_faces = prm::faces_around_vertices(input);
   if (other != nullptr) {
     const Mesh mesh = prm::read_mesh(other);
     const double diagonal = prm::bbox_diagonal(input), grid = site_grid * diagonal;
