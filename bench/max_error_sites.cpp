@@ -12,9 +12,10 @@
 //   refunr  the same before the rounding (what the refinement itself leaves; refunr < R < refined: the rounding)
 // Usage: prm_bench_max_error_sites MESH TARGET_ERROR [K] [--max-error E] [--refine R] [--[no-]local-refinement]
 //        [--effort N] [--bits B] [--step-scale S]
-//        prm_bench_max_error_sites MESH TARGET_ERROR [K] --mesh OTHER [--grid G]
+//        prm_bench_max_error_sites MESH TARGET_ERROR [K] --mesh OTHER [--grid G] [--samples N]
 // (--mesh: only OTHER's worst sites against MESH, e.g. `prm remesh`'s output, none of the stages; sites --grid G
-// apart, a fraction of the diagonal, 0.0065 unless given)
+// apart, a fraction of the diagonal, 0.0065 unless given; --samples N per surface, as `prm compare --samples`, a
+// peak between Metro's default samples)
 // (--max-error, --[no-]local-refinement, --effort, --bits, --step-scale: the options of the pack whose stream is the "decoded" stage; without
 // them, pack's defaults)
 #include <algorithm>
@@ -104,6 +105,7 @@ int main(int argc, char** argv) {
   size_t k = 8;
   double refine = 0, site_grid = 0.0065;
   const char* other = nullptr;
+  prm::MetroOptions mo;
   for (int i = 3; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--max-error" && i + 1 < argc) po.max_error = std::atof(argv[++i]);
@@ -115,6 +117,7 @@ int main(int argc, char** argv) {
     else if (a == "--step-scale" && i + 1 < argc) po.step_scale = std::atof(argv[++i]);
     else if (a == "--mesh" && i + 1 < argc) other = argv[++i];
     else if (a == "--grid" && i + 1 < argc) site_grid = std::atof(argv[++i]);
+    else if (a == "--samples" && i + 1 < argc) mo.samples = static_cast<size_t>(std::atoll(argv[++i]));
     else k = static_cast<size_t>(std::atoi(argv[i]));
   }
   Mesh input = prm::read_mesh(argv[1]);
@@ -125,10 +128,10 @@ int main(int argc, char** argv) {
   if (other != nullptr) {
     const Mesh mesh = prm::read_mesh(other);
     const double diagonal = prm::bbox_diagonal(input), grid = site_grid * diagonal;
-    const prm::DistanceReport report = prm::metro_distance(input, mesh);
+    const prm::DistanceReport report = prm::metro_distance(input, mesh, mo);
     std::printf("%s against %s: RMS %.3e, max %.3e (%.2fx the target)\n", other, argv[1], report.rel(report.rms),
                 report.rel(report.max), report.rel(report.max) / po.target_error);
-    for (const prm::DeviationSite& site : prm::worst_deviations(input, mesh, k, grid)) {
+    for (const prm::DeviationSite& site : prm::worst_deviations(input, mesh, k, grid, mo)) {
       const Vec3 p = site.a_to_b ? site.sample : site.closest;  // a point of the input
       std::printf("  %-5s %10.3e (%8.4f %8.4f %8.4f) crease %5.1f\n", site.a_to_b ? "in>pr" : "pr>in",
                   site.distance / diagonal, p[0], p[1], p[2], crease_near(input, vertex_faces, p, grid));
