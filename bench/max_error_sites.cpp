@@ -12,10 +12,9 @@
 //   refunr  the same before the rounding (what the refinement itself leaves; refunr < R < refined: the rounding)
 // Usage: prm_bench_max_error_sites MESH TARGET_ERROR [K] [--max-error E] [--refine R] [--[no-]local-refinement]
 //        [--effort N] [--bits B] [--step-scale S]
-//        prm_bench_max_error_sites MESH TARGET_ERROR [K] --mesh OTHER [--grid G] [--samples N]
+//        prm_bench_max_error_sites MESH TARGET_ERROR [K] --mesh OTHER [--grid G]
 // (--mesh: only OTHER's worst sites against MESH, e.g. `prm remesh`'s output, none of the stages; sites --grid G
-// apart, a fraction of the diagonal, 0.0065 unless given; --samples N per surface, as `prm compare --samples`, a
-// peak between Metro's default samples)
+// apart, a fraction of the diagonal, 0.0065 unless given)
 // (--max-error, --[no-]local-refinement, --effort, --bits, --step-scale: the options of the pack whose stream is the "decoded" stage; without
 // them, pack's defaults)
 #include <algorithm>
@@ -117,6 +116,7 @@ int main(int argc, char** argv) {
     else if (a == "--step-scale" && i + 1 < argc) po.step_scale = std::atof(argv[++i]);
     else if (a == "--mesh" && i + 1 < argc) other = argv[++i];
     else if (a == "--grid" && i + 1 < argc) site_grid = std::atof(argv[++i]);
+    // --mesh ... --samples N: N samples a surface, as `prm compare --samples` (a peak between Metro's default samples)
     else if (a == "--samples" && i + 1 < argc) mo.samples = static_cast<size_t>(std::atoll(argv[++i]));
     else k = static_cast<size_t>(std::atoi(argv[i]));
   }
