@@ -104,6 +104,7 @@ int main(int argc, char** argv) {
   size_t k = 8;
   double refine = 0, site_grid = 0.0065;
   const char* other = nullptr;
+  prm::MetroOptions mo;
   for (int i = 3; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--max-error" && i + 1 < argc) po.max_error = std::atof(argv[++i]);
@@ -116,6 +117,8 @@ int main(int argc, char** argv) {
     else if (a == "--fill-holes") po.fill_holes = true;
     else if (a == "--mesh" && i + 1 < argc) other = argv[++i];
     else if (a == "--grid" && i + 1 < argc) site_grid = std::atof(argv[++i]);
+    // --mesh ... --samples N: N samples a surface, as `prm compare --samples` (a peak between Metro's default samples)
+    else if (a == "--samples" && i + 1 < argc) mo.samples = static_cast<size_t>(std::atoll(argv[++i]));
     else k = static_cast<size_t>(std::atoi(argv[i]));
   }
   Mesh input = prm::read_mesh(argv[1]);
@@ -124,10 +127,10 @@ int main(int argc, char** argv) {
   if (other != nullptr) {
     const Mesh mesh = prm::read_mesh(other);
     const double diagonal = prm::bbox_diagonal(input), grid = site_grid * diagonal;
-    const prm::DistanceReport report = prm::metro_distance(input, mesh);
+    const prm::DistanceReport report = prm::metro_distance(input, mesh, mo);
     std::printf("%s against %s: RMS %.3e, max %.3e (%.2fx the target)\n", other, argv[1], report.rel(report.rms),
                 report.rel(report.max), report.rel(report.max) / po.target_error);
-    for (const prm::DeviationSite& site : prm::worst_deviations(input, mesh, k, grid)) {
+    for (const prm::DeviationSite& site : prm::worst_deviations(input, mesh, k, grid, mo)) {
       const Vec3 p = site.a_to_b ? site.sample : site.closest;  // a point of the input
       std::printf("  %-5s %10.3e (%8.4f %8.4f %8.4f) crease %5.1f\n", site.a_to_b ? "in>pr" : "pr>in",
                   site.distance / diagonal, p[0], p[1], p[2], crease_near(input, vertex_faces, p, grid));

@@ -351,8 +351,9 @@ TEST(PackMaxErrorHeavy, NoAttemptWithin8xKeepsTheNearestWithinFivePercent) {
   EXPECT_NE(note.find("the nearest to it within 5%"), std::string::npos) << note;
 }
 
-// `prm remesh FILE --target-error 2e-4` (12 bits, refined as pack refines): the remesh's distance to the input.
-prm::DistanceReport remesh_distance(const char* file, double target_error) {
+// `prm remesh FILE --target-error 2e-4` (12 bits, refined as pack refines): the remesh's distance to the input, with
+// `samples` per surface (0: Metro's default).
+prm::DistanceReport remesh_distance(const char* file, double target_error, size_t samples = 0) {
   const prm::Mesh input = shared_mesh(file);
   prm::remesh::RemeshOptions o;
   o.target_error = target_error;
@@ -362,9 +363,11 @@ prm::DistanceReport remesh_distance(const char* file, double target_error) {
     return prm::remesh::ErrorEstimate{d.rel(d.rms), d.rel(d.max)};
   };
   const prm::remesh::RemeshResult r = prm::remesh::remesh(input, o, error);
-  const prm::DistanceReport d = prm::metro_distance(input, r.prm.mesh);
-  std::printf("%s remesh at %g: %zu inserted, %zu moved, RMS %.3e, max %.3e\n", file, target_error,
-              r.prm.stats.deviation_inserts, r.prm.stats.deviation_moves, d.rel(d.rms), d.rel(d.max));
+  prm::MetroOptions mo;
+  mo.samples = samples;
+  const prm::DistanceReport d = prm::metro_distance(input, r.prm.mesh, mo);
+  std::printf("%s remesh at %g: %zu inserted, %zu moved, RMS %.3e, max %.3e (%zu samples)\n", file, target_error,
+              r.prm.stats.deviation_inserts, r.prm.stats.deviation_moves, d.rel(d.rms), d.rel(d.max), d.a_to_b.samples);
   return d;
 }
 
@@ -375,12 +378,14 @@ prm::DistanceReport remesh_distance(const char* file, double target_error) {
 // across a 148-degree groove, between the refinement's probes). hfold's descent (kDescendGain) mends the ear's
 // straying lattice vertex, after which the default samples find that peak: 10.29x. hgroove: that edge lies along the
 // rim of the thin ear (a knife edge, not a groove); after the rounds an end of it is moved so that the edge follows
-// the input (move_groove_end): 8.57x (9.19x with 5M samples). Still fails with 3% (11.1x).
+// the input (move_groove_end): 8.57x (9.19x with 5M samples). Still fails with 3% (11.1x). h22r: measured with 5M
+// samples (a peak between Metro's default samples is real); 20 rounds (the 135-degree crease was still being split in
+// round 12) and the groove moves judged on the faces' fine probes: 7.95x (9.19x before).
 TEST(PackMaxErrorHeavy, RemeshOfTheHorseKeepsRefiningPastItsOldBudget) {
   const double target = 2e-4;
-  const prm::DistanceReport d = remesh_distance("horse.ply", target);
+  const prm::DistanceReport d = remesh_distance("horse.ply", target, 5000000);
   EXPECT_LE(d.rel(d.rms), target);
-  EXPECT_LE(d.rel(d.max), 9.0 * target);
+  EXPECT_LE(d.rel(d.max), 8.0 * target);
 }
 
 // hfold: `prm remesh feline.off --target-error 2e-4` was 8.27x, its worst a lattice vertex that two rim moves for its

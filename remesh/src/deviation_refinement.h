@@ -25,6 +25,9 @@ struct DeviationRefinementOptions {
   // At most this share of the mesh's vertices is inserted (hear: 3% ran out in round 8 on `prm remesh horse.ply
   // --target-error 2e-4`, the leg tip still 1.77x the bound away; pack at 2e-4 inserts 0.2-1.4%).
   double max_insert_share = 0.06;
+  // Rounds of insertions (each measures the deviations of the refined mesh again; later rounds only the faces the
+  // last one changed). The remesher's local refinement takes 20 (resample_pipeline.cpp's finish).
+  size_t max_rounds = 12;
   // Thin sheets (issue 22, the cause of the worst case): before inserting a vertex, move an irregular vertex out to a
   // missed input point (a cut-off tip's rim) or back to the input (a mesh vertex that strays), move a lattice vertex
   // that strays along its relief's axis (its height: it keeps its lattice place), or flip an edge whose triangles
