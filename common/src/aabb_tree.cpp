@@ -377,7 +377,7 @@ inline void box_distance2_pair(const float (&lo2)[3][2], const float (&hi2)[3][2
   const __m128d in_b = _mm_and_pd(_mm_cmpge_sd(s(d3), zero), _mm_cmple_sd(s(d4), s(d3)));
   const __m128d in_c = _mm_and_pd(_mm_cmpge_sd(s(d6), zero), _mm_cmple_sd(s(d5), s(d6)));
   const __m128d flat = _mm_cmpngt_sd(s(denom), zero);
-  if (_mm_movemask_pd(_mm_andnot_pd(_mm_or_pd(_mm_or_pd(in_a, in_b), in_c), flat)) & 1) [[unlikely]] {
+  if (_mm_movemask_pd(_mm_andnot_pd(_mm_or_pd(_mm_or_pd(in_a, in_b), in_c), flat)) & 1) {  // rare: predicted
     q = closest_point_on_triangle(p, a, b, c);
     return norm2(p - q);
   }
