@@ -11,11 +11,11 @@
 //   refined the remesh's mesh with the local refinement at --refine R (fraction of the diagonal), rounded
 //   refunr  the same before the rounding (what the refinement itself leaves; refunr < R < refined: the rounding)
 // Usage: prm_bench_max_error_sites MESH TARGET_ERROR [K] [--max-error E] [--refine R] [--[no-]local-refinement]
-//        [--effort N] [--bits B] [--step-scale S]
+//        [--effort N] [--bits B] [--step-scale S] [--fill-holes]
 //        prm_bench_max_error_sites MESH TARGET_ERROR [K] --mesh OTHER [--grid G]
 // (--mesh: only OTHER's worst sites against MESH, e.g. `prm remesh`'s output, none of the stages; sites --grid G
 // apart, a fraction of the diagonal, 0.0065 unless given)
-// (--max-error, --[no-]local-refinement, --effort, --bits, --step-scale: the options of the pack whose stream is the "decoded" stage; without
+// (--max-error, --[no-]local-refinement, --effort, --bits, --step-scale, --fill-holes: the options of the pack whose stream is the "decoded" stage; without
 // them, pack's defaults)
 #include <algorithm>
 #include <cmath>
@@ -95,7 +95,7 @@ double crease_near(const Mesh& m, const std::vector<std::vector<uint32_t>>& vert
 int main(int argc, char** argv) {
   if (argc < 3) {
     std::fprintf(stderr, "usage: %s MESH TARGET_ERROR [K] [--max-error E] [--refine R] [--[no-]local-refinement]\n"
-                 "  [--effort N] [--bits B] [--step-scale S]\n",
+                 "  [--effort N] [--bits B] [--step-scale S] [--fill-holes]\n",
                  argv[0]);
     return 1;
   }
@@ -113,15 +113,14 @@ int main(int argc, char** argv) {
     else if (a == "--effort" && i + 1 < argc) po.effort = std::atoi(argv[++i]);
     else if (a == "--bits" && i + 1 < argc) po.bits = std::atoi(argv[++i]);
     else if (a == "--step-scale" && i + 1 < argc) po.step_scale = std::atof(argv[++i]);
+    else if (a == "--fill-holes") po.fill_holes = true;
     else if (a == "--mesh" && i + 1 < argc) other = argv[++i];
     else if (a == "--grid" && i + 1 < argc) site_grid = std::atof(argv[++i]);
     else k = static_cast<size_t>(std::atoi(argv[i]));
   }
   Mesh input = prm::read_mesh(argv[1]);
   if (!prm::validate_mesh(input).ready_for_remesh()) input = prm::repair_mesh(input);
-  std::vector<std::vector<uint32_t>> vertex_faces(input.positions.size());
-  for (uint32_t f = 0; f < input.triangles.size(); ++f)
-    for (uint32_t v : input.triangles[f]) vertex_faces[v].push_back(f);
+  const std::vector<std::vector<uint32_t>> vertex_faces = prm::faces_around_vertices(input);
   if (other != nullptr) {
     const Mesh mesh = prm::read_mesh(other);
     const double diagonal = prm::bbox_diagonal(input), grid = site_grid * diagonal;

@@ -39,4 +39,11 @@ Property& Mesh::set_face_property(const std::string& name, ScalarType type, std:
   return set(face_properties, triangles.size(), name, type, std::move(values));
 }
 
+std::vector<std::vector<uint32_t>> faces_around_vertices(const Mesh& m) {
+  std::vector<std::vector<uint32_t>> out(m.positions.size());
+  for (uint32_t f = 0; f < m.triangles.size(); ++f)
+    for (uint32_t v : m.triangles[f]) out[v].push_back(f);
+  return out;
+}
+
 }  // namespace prm

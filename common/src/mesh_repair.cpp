@@ -29,14 +29,11 @@ double area2(const Mesh& m, const Tri& t) {
 // the new edge is not already an edge, and both new triangles have area. Returns the number of flips; the
 // rest stay (counted by the caller).
 size_t flip_zero_area_faces(Mesh& m, double eps2) {
-  const size_t nv = m.positions.size();
   std::vector<uint32_t> zero;
   for (uint32_t f = 0; f < m.triangles.size(); ++f)
     if (area2(m, m.triangles[f]) <= eps2) zero.push_back(f);
   if (zero.empty()) return 0;
-  std::vector<std::vector<uint32_t>> faces_of(nv);
-  for (uint32_t f = 0; f < m.triangles.size(); ++f)
-    for (uint32_t v : m.triangles[f]) faces_of[v].push_back(f);
+  std::vector<std::vector<uint32_t>> faces_of = faces_around_vertices(m);
   auto has_directed = [&](uint32_t f, uint32_t a, uint32_t b) {
     const Tri& t = m.triangles[f];
     for (int k = 0; k < 3; ++k)

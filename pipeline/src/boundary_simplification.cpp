@@ -39,9 +39,7 @@ BoundarySimplification simplify_boundary(Mesh& m, double tolerance) {
         prev[b] = a;
       }
     }
-  std::vector<std::vector<uint32_t>> faces_of(nv);
-  for (uint32_t f = 0; f < nf; ++f)
-    for (uint32_t v : m.triangles[f]) faces_of[v].push_back(f);
+  std::vector<std::vector<uint32_t>> faces_of = faces_around_vertices(m);
   std::vector<uint8_t> dead_face(nf, 0), dead_vertex(nv, 0);
   // stands_for[v]: the input's boundary vertices the loop edge (prev[v], v) stands for (removed ones), in order.
   std::vector<std::vector<uint32_t>> stands_for(nv);

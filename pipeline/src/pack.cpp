@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <iterator>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -370,9 +371,17 @@ PackResult finish_at(const SearchContext& ctx, const PackOptions& options, Remes
                                      out.remesh.error.max <= kDefaultMaxErrorPerTarget * options.target_error
                                  ? kDefaultMaxErrorPerTarget * options.target_error
                                  : 0;
+    // A stream whose vertices already pass guard_aim is refused for the max without its Metro run: vertex_distance_max
+    // is at most Metro's max (the candidate's vertices are among its samples). Whether that stream also missed the
+    // RMS target (2, not 1) matters only to the lambda above it, tried once more below: its decoded mesh is kept here
+    // and measured only then (hcpu5: on the venus at 1.3e-4 the first lambda and that retry, two Metro runs).
+    const MetroReference& measured_by = lambda_full ? ctx.full : ctx.search;
+    const bool vertex_bound = guard_aim > 0 && measured_by.options().sample_vertices;
+    std::optional<Mesh> unmeasured;
     // Lambda j's stream tried: kept when it meets everything and is smaller. 0: it met; 1: refused only for passing
-    // guard_aim; 2: refused otherwise.
-    const auto try_lambda = [&](int j) {
+    // guard_aim; 2: refused otherwise; 3: 1 or 2, its vertices past guard_aim (`unmeasured`: its mesh).
+    // kept_after_unmeasured: the lambda below j returned 3, and j's stream is kept only if that one was 1.
+    const auto try_lambda = [&](int j, bool kept_after_unmeasured) {
       codec::PrmOptions o = po;
       o.height_tolerance = kHeightTolerance;
       o.height_lambda = kHeightLambdas[j];
@@ -387,15 +396,25 @@ PackResult finish_at(const SearchContext& ctx, const PackOptions& options, Remes
       size_t zero_area = 0, coincident = 0;
       // A stream refused for its triangles or its points is not measured (h22max8: the feline's bisection refused
       // three of its four lambdas so, 0.34 s CPU each).
+      bool over_aim = false;
       const auto measure_unless_refused = [&](const Mesh& m) {
-        return zero_area > 0 || coincident > base_coincident ? remesh::ErrorEstimate{HUGE_VAL, HUGE_VAL} : measure(m);
+        if (zero_area > 0 || coincident > base_coincident) return remesh::ErrorEstimate{HUGE_VAL, HUGE_VAL};
+        const double diagonal = measured_by.diagonal();
+        if (vertex_bound && diagonal > 0 && vertex_distance_max(m, measured_by.tree()) / diagonal > guard_aim) {
+          over_aim = true;
+          unmeasured = m;
+          return remesh::ErrorEstimate{0, HUGE_VAL};
+        }
+        return measure(m);
       };
       const remesh::ErrorEstimate e =
           encode_facing(o, &report, &stream, measure_unless_refused, &zero_area, &coincident);
+      if (over_aim) return 3;
       if (e.rms > rm.target || (rm.max_target > 0 && e.max > rm.max_target) || zero_area > 0 ||
           coincident > base_coincident)
         return 2;
       if (guard_aim > 0 && e.max > guard_aim) return 1;
+      if (kept_after_unmeasured && measure(*unmeasured).rms > rm.target) return 2;
       if (stream.size() < out.stream.size()) {
         rm.error_at_full_density = lambda_full;  // another stream, measured here
         out.stream = std::move(stream);
@@ -405,24 +424,26 @@ PackResult finish_at(const SearchContext& ctx, const PackOptions& options, Remes
       }
       return 0;
     };
-    bool over_aim_at_hi = false;
+    bool over_aim_at_hi = false, unmeasured_at_hi = false;
     for (int round = 0; hi - lo > 1 && round < ctx.plan.lambda_rounds; ++round) {
       const int mid = (lo + hi) / 2;
       ProgressJob::advance_round();
-      const int r = try_lambda(mid);
+      const int r = try_lambda(mid, false);
       if (r == 0) {
         lo = mid;
       } else {
         hi = mid;
         over_aim_at_hi = r == 1;
+        unmeasured_at_hi = r == 3;
       }
     }
     // The max does not grow with lambda everywhere (hfeline: venus with the rounding's face probes passed the aim at
     // 0.15 and not at 0.19, 7,563 B against 7,339 B): a lambda refused only for the max, next to the last one that
     // met, gives way to the one above it once.
-    if (over_aim_at_hi && hi == lo + 1 && hi + 1 < static_cast<int>(std::size(kHeightLambdas))) {
+    // With hi's RMS not measured (3), the one above it is tried first: kept only if hi then meets the RMS target.
+    if ((over_aim_at_hi || unmeasured_at_hi) && hi == lo + 1 && hi + 1 < static_cast<int>(std::size(kHeightLambdas))) {
       ProgressJob::advance_round();
-      if (try_lambda(hi + 1) == 0) lo = hi + 1;
+      if (try_lambda(hi + 1, unmeasured_at_hi) == 0) lo = hi + 1;
     }
     out.seconds_remesh += seconds_since(t1);  // part of the search
   }
@@ -456,10 +477,16 @@ PackResult finish_at(const SearchContext& ctx, const PackOptions& options, Remes
     };
     ProgressJob::stage("check");
     ProgressJob::rounds_left(1);
-    auto full_error = [&](codec::PrmOptions& o, std::vector<uint8_t>* stream, codec::EncodeReport* report) {
+    // refuse_over > 0: a stream whose vertices pass that max is refused without its Metro run (vertex_distance_max).
+    auto full_error = [&](codec::PrmOptions& o, std::vector<uint8_t>* stream, codec::EncodeReport* report,
+                          double refuse_over) {
       size_t za = 0;
       auto full = [&](const Mesh& m) {
-        return !rounded_stream.empty() && *stream == rounded_stream ? rounded_error : measure_with(ctx.full, m);
+        if (!rounded_stream.empty() && *stream == rounded_stream) return rounded_error;
+        if (refuse_over > 0 && ctx.full.options().sample_vertices && ctx.full.diagonal() > 0 &&
+            vertex_distance_max(m, ctx.full.tree()) / ctx.full.diagonal() > refuse_over)
+          return remesh::ErrorEstimate{HUGE_VAL, HUGE_VAL};
+        return measure_with(ctx.full, m);
       };
       const remesh::ErrorEstimate e = encode_facing(o, report, stream, full, &za, nullptr);
       return za > 0 ? remesh::ErrorEstimate{HUGE_VAL, HUGE_VAL} : e;
@@ -480,7 +507,7 @@ PackResult finish_at(const SearchContext& ctx, const PackOptions& options, Remes
       o.height_lambda = j >= 0 ? kHeightLambdas[j] : 0;  // -1: rounded heights
       std::vector<uint8_t> stream;
       codec::EncodeReport report;
-      const remesh::ErrorEstimate e = full_error(o, &stream, &report);
+      const remesh::ErrorEstimate e = full_error(o, &stream, &report, 0);
       if (!meets(e)) continue;
       met = true;
       out.stream = std::move(stream);
@@ -495,7 +522,7 @@ PackResult finish_at(const SearchContext& ctx, const PackOptions& options, Remes
     // stays (that max is the refinement's aim, not a constraint of the search: `measured` is the RMS's).
     const double aim = kDefaultMaxErrorPerTarget * options.target_error;
     // At most kHeightGuardTries lambdas, then rounding (height_guard.h). try_lambda keeps lambda j's stream (-1: the
-    // rounded heights) when it meets both.
+    // rounded heights) when it meets both: one whose vertices pass the aim is refused unmeasured.
     struct Encoded {
       std::vector<uint8_t> stream;
       codec::EncodeReport report;
@@ -506,7 +533,7 @@ PackResult finish_at(const SearchContext& ctx, const PackOptions& options, Remes
       Encoded c;
       c.options = out.codec_options;
       c.options.height_lambda = j >= 0 ? kHeightLambdas[j] : 0;
-      c.error = full_error(c.options, &c.stream, &c.report);
+      c.error = full_error(c.options, &c.stream, &c.report, aim);
       return c;
     };
     const auto keep_if_meets = [&](Encoded& c) {

@@ -1,5 +1,7 @@
 #include "prm/pipeline/stream_check.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <vector>
 
@@ -49,6 +51,19 @@ std::vector<size_t> turned_triangles(const Mesh& m, const Mesh& reference, const
     if (is_turned) turned.push_back(i);
   }
   return turned;
+}
+
+double vertex_distance_max(const Mesh& m, const AabbTree& tree) {
+  std::vector<uint8_t> used(m.positions.size(), 0);
+  for (const Tri& t : m.triangles) used[t[0]] = used[t[1]] = used[t[2]] = 1;
+  double max2 = 0;
+  AabbTree::Hit hint;
+  for (size_t v = 0; v < used.size(); ++v)
+    if (used[v]) {
+      tree.closest(m.positions[v], hint);
+      max2 = std::max(max2, hint.distance2);
+    }
+  return std::sqrt(max2);
 }
 
 Mesh pack_reference(const Mesh& input) {

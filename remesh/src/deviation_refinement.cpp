@@ -164,14 +164,6 @@ bool face_across(const Mesh& m, const std::vector<std::vector<uint32_t>>& vertex
   return true;
 }
 
-// The faces around each vertex of m, in face order.
-std::vector<std::vector<uint32_t>> faces_of_vertices(const Mesh& m) {
-  std::vector<std::vector<uint32_t>> out(m.positions.size());
-  for (uint32_t f = 0; f < m.triangles.size(); ++f)
-    for (uint32_t v : m.triangles[f]) out[v].push_back(f);
-  return out;
-}
-
 // The squared distance from p to the nearest of triangles `tris` of m (infinity when there is none).
 template <class Tris>
 double nearest2(const Mesh& m, const Tris& tris, const Vec3& p) {
@@ -1040,7 +1032,7 @@ size_t prune_inserted(Mesh& m, const QuantFrame& frame, size_t first_inserted, c
                       std::vector<AabbTree::Hit>& probe_hit) {
   if (m.positions.size() <= first_inserted) return 0;
   const double bound2 = bound * bound;
-  std::vector<std::vector<uint32_t>> vertex_faces = faces_of_vertices(m);
+  std::vector<std::vector<uint32_t>> vertex_faces = faces_around_vertices(m);
   // in>pr: the input near the fans (the faces around the inserted vertices): its vertices and the input triangles
   // with a probe (their grid_divisions grids) within kPruneReach x the bound of a fan's face, by that closest fan
   // face at the start. A superset of those whose closest face is a fan's face, but for the input already farther
@@ -1526,7 +1518,7 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
       if (a.input_vertex != b.input_vertex) return a.input_vertex < b.input_vertex;
       return a.vertex < b.vertex;
     });
-    vertex_faces = faces_of_vertices(m);
+    vertex_faces = faces_around_vertices(m);
     std::vector<uint8_t> touched(m.triangles.size(), 0);
     moved.resize(m.positions.size(), 0);
     tips.made.resize(m.positions.size(), 0);
@@ -1605,7 +1597,7 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
   for (int round = 0; options.thin_sheets && options.dense_probes && options.lattice_moves &&
                       options.descent_placement && options.groove_moves && round < kGrooveRounds;
        ++round) {
-    vertex_faces = faces_of_vertices(m);
+    vertex_faces = faces_around_vertices(m);
     std::vector<Deviation> far;
     for (uint32_t f = 0; f < m.triangles.size(); ++f) {
       AabbTree::Hit hint, worst;
@@ -1680,7 +1672,7 @@ size_t round_towards_input(PrmMesh& prm, const Mesh& input, const AabbTree& inpu
   InputFacing facing = facing_guard ? InputFacing(&input, &input_tree, &frame, m) : InputFacing();
   facing.index_cells(m);
   const double share2 = kRoundShare * kRoundShare * bound * bound;
-  std::vector<std::vector<uint32_t>> vertex_faces = faces_of_vertices(m);
+  std::vector<std::vector<uint32_t>> vertex_faces = faces_around_vertices(m);
   // in>pr: the input vertices farther than the share from the mesh, by their closest mesh face; and the points between
   // them, on the fine grid (fine_grid_divisions) of each input triangle with a vertex farther than kFaceProbeShare x
   // the bound (hfeline: the feline's worst place at 2e-4, an input crease edge's midpoint 1.02x the bound from the

@@ -63,9 +63,7 @@ HeightFitStats fit_heights(PrmMesh& prm, const Mesh& input, const AabbTree& tree
   };
   std::vector<uint8_t> was_flipped(nf);
   tbb::parallel_for(size_t{0}, nf, [&](size_t f) { was_flipped[f] = flipped(static_cast<uint32_t>(f)); });
-  std::vector<std::vector<uint32_t>> vertex_faces(nv);
-  for (uint32_t f = 0; f < nf; ++f)
-    for (uint32_t v : m.triangles[f]) vertex_faces[v].push_back(f);
+  const std::vector<std::vector<uint32_t>> vertex_faces = faces_around_vertices(m);
   const std::vector<Vec3> start = m.positions;
   std::vector<double> shift(nv, 0.0);  // total move along the vertex's axis so far
   std::vector<std::array<double, 6>> face_terms(nf);  // per corner: weighted offset sum, weight sum

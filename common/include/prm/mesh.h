@@ -40,4 +40,8 @@ struct Mesh {
   Property& set_face_property(const std::string& name, ScalarType type, std::vector<double> values);
 };
 
+// The triangles around each vertex: out[v] lists, in increasing order, the triangles with a corner at v (a triangle
+// that uses v at two corners is listed twice). Every corner must be a vertex of m.
+std::vector<std::vector<uint32_t>> faces_around_vertices(const Mesh& m);
+
 }  // namespace prm

@@ -33,6 +33,13 @@ struct TurnedTriangles {
 std::vector<size_t> turned_triangles(const Mesh& m, const Mesh& reference, const AabbTree& reference_tree,
                                      const TurnedTriangles* known = nullptr);
 
+// The largest distance from a vertex of m's triangles to the surface of `tree` (squared distances compared, the
+// root taken once). It is at most the max of Metro's samples of m measured against that surface
+// (MetroReference::compare's candidate-to-reference direction): every vertex of a triangle is one of those samples
+// when MetroOptions::sample_vertices, and its distance is found through the same tree. So a mesh whose vertices
+// already pass a bound passes it in Metro's max too (`pack`'s heights refuse such a lambda without its Metro run).
+double vertex_distance_max(const Mesh& m, const AabbTree& tree);
+
 // What `pack` remeshes: the mesh itself when the remesher takes it as it is, otherwise its repair (prm::InputError
 // when it cannot be repaired).
 Mesh pack_reference(const Mesh& input);
