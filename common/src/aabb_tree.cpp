@@ -355,6 +355,73 @@ inline void box_distance2_pair(const float (&lo2)[3][2], const float (&hi2)[3][2
 #endif
 }
 
+// closest_point_on_triangle(p, a, b, c) into q, and its squared distance to p, bit for bit, without its branches:
+// every region's point is computed (the same operations on the same doubles; packed SSE2 is IEEE double lane by lane),
+// and the region is chosen by the same tests in the same order, as masks. The search tests a few triangles a query,
+// whose regions change from one to the next, and those branches were mispredicted. The degenerate (zero-area)
+// triangles keep closest_point_on_triangle's code (rare, so predicted).
+[[gnu::always_inline]] inline double closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c, Vec3& q) {
+#if defined(__SSE2__)
+  const Vec3 ab = b - a, ac = c - a, ap = p - a, bp = p - b, cp = p - c;
+  const double d1 = dot(ab, ap), d2 = dot(ac, ap), d3 = dot(ab, bp), d4 = dot(ac, bp), d5 = dot(ab, cp),
+               d6 = dot(ac, cp);
+  const double vc = d1 * d4 - d3 * d2;
+  const double va = d3 * d6 - d5 * d4;
+  const double vb = d5 * d2 - d1 * d6;
+  const double denom = va + vb + vc;
+  const double e43 = d4 - d3, e56 = d5 - d6;
+  const __m128d zero = _mm_setzero_pd();
+  const auto s = [](double x) { return _mm_set_sd(x); };
+  // The region tests, in closest_point_on_triangle's order (a mask in lane 0).
+  const __m128d in_a = _mm_and_pd(_mm_cmple_sd(s(d1), zero), _mm_cmple_sd(s(d2), zero));
+  const __m128d in_b = _mm_and_pd(_mm_cmpge_sd(s(d3), zero), _mm_cmple_sd(s(d4), s(d3)));
+  const __m128d in_c = _mm_and_pd(_mm_cmpge_sd(s(d6), zero), _mm_cmple_sd(s(d5), s(d6)));
+  const __m128d flat = _mm_cmpngt_sd(s(denom), zero);
+  if (_mm_movemask_pd(_mm_andnot_pd(_mm_or_pd(_mm_or_pd(in_a, in_b), in_c), flat)) & 1) {  // rare: predicted
+    q = closest_point_on_triangle(p, a, b, c);
+    return norm2(p - q);
+  }
+  const __m128d on_ab = _mm_and_pd(_mm_and_pd(_mm_cmple_sd(s(vc), zero), _mm_cmpge_sd(s(d1), zero)),
+                                   _mm_cmple_sd(s(d3), zero));
+  const __m128d on_ac = _mm_and_pd(_mm_and_pd(_mm_cmple_sd(s(vb), zero), _mm_cmpge_sd(s(d2), zero)),
+                                   _mm_cmple_sd(s(d6), zero));
+  const __m128d on_bc = _mm_and_pd(_mm_and_pd(_mm_cmple_sd(s(va), zero), _mm_cmpge_sd(s(e43), zero)),
+                                   _mm_cmpge_sd(s(e56), zero));
+  // The divisions two by two: {d1 / (d1 - d3), d2 / (d2 - d6)} (edges ab, ac), {e43 / (e43 + e56), vb / denom}
+  // (edge bc, interior), vc / denom (interior).
+  const __m128d t1 = _mm_div_pd(_mm_set_pd(d2, d1), _mm_set_pd(d2 - d6, d1 - d3));
+  const __m128d t2 = _mm_div_pd(_mm_set_pd(vb, e43), _mm_set_pd(denom, e43 + e56));
+  const __m128d t3 = _mm_div_sd(s(vc), s(denom));
+  const auto bcast = [](__m128d x, int lane) { return lane ? _mm_unpackhi_pd(x, x) : _mm_unpacklo_pd(x, x); };
+  // A point as {x, y} and {z, z}.
+  struct P2 {
+    __m128d xy, z;
+  };
+  const auto load = [](const Vec3& v) { return P2{_mm_loadu_pd(v.data()), _mm_set1_pd(v[2])}; };
+  const auto add = [](const P2& u, const P2& v) { return P2{_mm_add_pd(u.xy, v.xy), _mm_add_pd(u.z, v.z)}; };
+  const auto scale = [](const P2& u, __m128d t) { return P2{_mm_mul_pd(u.xy, t), _mm_mul_pd(u.z, t)}; };
+  const auto pick = [&](__m128d mask, const P2& yes, const P2& no) {
+    const __m128d m = bcast(mask, 0);
+    return P2{_mm_or_pd(_mm_and_pd(m, yes.xy), _mm_andnot_pd(m, no.xy)),
+              _mm_or_pd(_mm_and_pd(m, yes.z), _mm_andnot_pd(m, no.z))};
+  };
+  const P2 pa = load(a), pb = load(b), pc = load(c), vab = load(ab), vac = load(ac), vbc = load(c - b);
+  P2 r = add(add(pa, scale(vab, bcast(t2, 1))), scale(vac, bcast(t3, 0)));  // interior
+  r = pick(on_bc, add(pb, scale(vbc, bcast(t2, 0))), r);
+  r = pick(on_ac, add(pa, scale(vac, bcast(t1, 1))), r);
+  r = pick(on_ab, add(pa, scale(vab, bcast(t1, 0))), r);
+  r = pick(in_c, pc, r);
+  r = pick(in_b, pb, r);
+  r = pick(in_a, pa, r);
+  _mm_storeu_pd(q.data(), r.xy);
+  _mm_store_sd(&q[2], r.z);
+  return norm2(p - q);
+#else
+  q = closest_point_on_triangle(p, a, b, c);
+  return norm2(p - q);
+#endif
+}
+
 // The two children of an inner node (nodes first and first + 1, one pair), the nearer to p first: their numbers and
 // box distances (a tie keeps the order).
 template <class Pair>
@@ -388,9 +455,8 @@ void AabbTree::closest(const Vec3& p, Hit& hint) const {
   // The hint's triangle is usually the answer or close to it: its exact distance is the tightest start bound.
   const uint32_t slot = slot_[hint.face];
   const Triangle& t = triangles_[slot];
-  const Vec3 q = closest_point_on_triangle(p, points_[t.a], points_[t.b], points_[t.c]);
-  hint.point = q;
-  search(p, hint, norm2(p - q), slot);
+  const double d2 = closest_on_triangle(p, points_[t.a], points_[t.b], points_[t.c], hint.point);
+  search(p, hint, d2, slot);
 }
 
 bool AabbTree::well_inside(const Vec3& p, uint32_t face) const {
@@ -414,8 +480,7 @@ AabbTree::Hit AabbTree::on_face(const Vec3& p, uint32_t face) const {
   Hit hit;
   if (face >= slot_.size()) return hit;
   const Triangle& t = triangles_[slot_[face]];
-  hit.point = closest_point_on_triangle(p, points_[t.a], points_[t.b], points_[t.c]);
-  hit.distance2 = norm2(p - hit.point);
+  hit.distance2 = closest_on_triangle(p, points_[t.a], points_[t.b], points_[t.c], hit.point);
   hit.face = face;
   return hit;
 }
@@ -430,8 +495,8 @@ void AabbTree::closest_reusing(const Vec3& p, Hit& hint) const {
 bool AabbTree::within(const Vec3& p, double bound2, Hit& hint) const {
   const auto near = [&](uint32_t slot) {
     const Triangle& t = triangles_[slot];
-    const Vec3 q = closest_point_on_triangle(p, points_[t.a], points_[t.b], points_[t.c]);
-    const double d2 = norm2(p - q);
+    Vec3 q;
+    const double d2 = closest_on_triangle(p, points_[t.a], points_[t.b], points_[t.c], q);
     if (!(d2 <= bound2)) return false;
     hint.distance2 = d2;
     hint.point = q;
@@ -501,8 +566,8 @@ void AabbTree::search(const Vec3& p, Hit& hit, double best, uint32_t skip) const
       for (uint32_t k = first, end = first + count; k < end; ++k) {
         if (k == skip) continue;
         const Triangle& t = triangles_[k];
-        const Vec3 q = closest_point_on_triangle(p, points_[t.a], points_[t.b], points_[t.c]);
-        const double d2 = norm2(p - q);
+        Vec3 q;
+        const double d2 = closest_on_triangle(p, points_[t.a], points_[t.b], points_[t.c], q);
         if (d2 < best) {
           best = d2;
           hit.point = q;

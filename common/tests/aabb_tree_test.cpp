@@ -2,7 +2,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
 #include <random>
+#include <vector>
 
 #include "metro_test_meshes.h"
 #include "prm/aabb_tree.h"
@@ -72,6 +74,46 @@ TEST(AabbTree, MatchesBruteForceOnATriangleSoup) {
     tree.closest(p, hint);
     ASSERT_EQ(hint.distance2, expected);
   }
+}
+
+// The tree's triangle test (branch-free) gives closest_point_on_triangle's point and squared distance bit for bit:
+// random triangles and slivers, zero-area ones, and points on the regions' borders (exact barycentric steps).
+TEST(AabbTree, TriangleTestIsClosestPointOnTriangleBitForBit) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const double steps[] = {-1.5, -0.5, 0.0, 0.25, 0.5, 1.0, 1.5};
+  const auto same = [](const Vec3& x, const Vec3& y) { return std::memcmp(x.data(), y.data(), sizeof(Vec3)) == 0; };
+  int tested = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const Vec3 a{u(rng), u(rng), u(rng)};
+    Vec3 b{u(rng), u(rng), u(rng)}, c{u(rng), u(rng), u(rng)};
+    switch (i % 6) {
+      case 1: c = a + (b - a) * 0.5; break;                        // collinear (zero area, or nearly)
+      case 2: c = b; break;                                         // a repeated corner
+      case 3: b = a; c = a; break;                                  // a point
+      case 4: c = a + (b - a) * 0.5 + Vec3{1e-9, -2e-9, 1e-9}; break;  // a sliver
+      case 5: b = a * 1e6; c = a * -3e5; break;                     // large coordinates
+      default: break;
+    }
+    const AabbTree tree(std::vector<Vec3>{a, b, c}, std::vector<Tri>{{0, 1, 2}});
+    const Vec3 n = cross(b - a, c - a);
+    std::vector<Vec3> points;
+    for (int k = 0; k < 8; ++k) points.push_back({2 * u(rng), 2 * u(rng), 2 * u(rng)});
+    for (const double s : steps)
+      for (const double t : steps) points.push_back(a + (b - a) * s + (c - a) * t + n * (0.25 * (s - t)));
+    points.push_back(a);
+    points.push_back(b);
+    points.push_back(c);
+    for (const Vec3& p : points) {
+      const Vec3 q = closest_point_on_triangle(p, a, b, c);
+      const AabbTree::Hit hit = tree.closest(p), on = tree.on_face(p, 0);
+      ASSERT_TRUE(same(hit.point, q) && same(on.point, q)) << "triangle " << i;
+      ASSERT_EQ(hit.distance2, norm2(p - q)) << "triangle " << i;
+      ASSERT_EQ(on.distance2, norm2(p - q)) << "triangle " << i;
+      ++tested;
+    }
+  }
+  EXPECT_EQ(tested, 3000 * (8 + 49 + 3));
 }
 
 TEST(AabbTree, SphereQueries) {

@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "prm/boundary_deviation.h"
 #include "prm/error.h"
 #include "prm/mesh_validate.h"
 #include "prm/metro_distance.h"
@@ -1072,7 +1073,10 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
   }
   out.remesh_rounds = rounds;
   out.boundary_loops_in = loops_in;
-  out.boundary_loops_out = validate_mesh(out.remesh.prm.mesh).boundary_loops;
+  // A closed mesh (every half-edge's reverse is some face's: no edge of one face) has no boundary loop; only an open
+  // one is validated in full for its loops (the venus at effort 0: 0.04 s less).
+  const Mesh& remeshed = out.remesh.prm.mesh;
+  out.boundary_loops_out = boundary_edges(remeshed).empty() ? 0 : validate_mesh(remeshed).boundary_loops;
   out.boundary_vertices_removed = boundary_removed;
   out.seconds_repair = seconds_repair;
   out.repaired = repaired;
