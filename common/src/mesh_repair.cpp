@@ -1,19 +1,28 @@
-// prm repair: drop degenerate and duplicate faces, flip away zero-area slivers, close every hole with a fan
-// around the centroid of its boundary loop (paper §4: "patching each hole with a closed triangle fan centered
-// at the average of all vertices bounding the hole"). Sort-based; refuses what it cannot repair without
+// prm repair: drop degenerate and duplicate faces, flip away zero-area slivers, close every hole by the triangulation
+// of its boundary loop that folds least (hole_triangulation.h), or, for a long loop or one that no triangulation
+// closes, with a fan around the centroid of its boundary loop (paper §4: "patching each hole with a closed triangle
+// fan centered at the average of all vertices bounding the hole"). Sort-based; refuses what it cannot repair without
 // guessing (non-manifold or inconsistently oriented input).
 #include "prm/mesh_repair.h"
 
 #include <algorithm>
 #include <numeric>
 #include <stdexcept>
+#include <unordered_set>
 
+#include "hole_triangulation.h"
 #include "prm/error.h"
 #include "prm/mesh_validate.h"
 #include "prm/vec3.h"
 
 namespace prm {
 namespace {
+
+// Holes are triangulated (O(n^3) in a loop's n vertices) up to this length, and while the loops triangulated so far
+// took at most this many candidate triangles in all (about n^3 / 6 a loop; ~1 s): the rest get the centroid fan, so
+// that a hostile input's many long holes cost no more than that.
+constexpr size_t kMaxTriangulatedLoop = 400;
+constexpr double kTriangulationBudget = 6e7;
 
 bool repeats_vertex(const Tri& t) {
   return t[0] == t[1] || t[1] == t[2] || t[0] == t[2];
@@ -240,36 +249,67 @@ Mesh repair_mesh(const Mesh& in, RepairReport* report, const RepairOptions& opti
   };
   std::sort(order.begin(), order.end(), [&](uint32_t x, uint32_t y) { return key(x) < key(y); });
   const size_t n_now = m.positions.size();  // pinch splitting added vertices
-  std::vector<uint32_t> next(n_now, UINT32_MAX);
+  std::vector<uint32_t> next(n_now, UINT32_MAX), next_face(n_now, UINT32_MAX);
   size_t boundary_edges = 0;
   for (size_t i = 0; i < order.size();) {
     size_t j = i + 1;
     while (j < order.size() && key(order[j]) == key(order[i])) ++j;
     if (j - i == 1) {
       next[he[order[i]].from] = he[order[i]].to;
+      next_face[he[order[i]].from] = order[i] / 3;
       ++boundary_edges;
     }
     i = j;
   }
 
-  // Close each loop with a fan around its centroid; the fan traverses the loop's edges backwards.
+  // The edges between two boundary vertices, which a hole's triangulation may not repeat.
+  std::unordered_set<uint64_t> rim_edges;
+  if (boundary_edges && options.fill_holes)
+    for (const Tri& t : m.triangles)
+      for (int k = 0; k < 3; ++k)
+        if (next[t[k]] != UINT32_MAX && next[t[(k + 1) % 3]] != UINT32_MAX)
+          rim_edges.insert(edge_key(t[k], t[(k + 1) % 3]));
+  const double min_area2 = 2e-14 * check.diagonal * check.diagonal;  // validate_mesh()'s zero area
+  double budget = kTriangulationBudget;
+
+  // Close each loop: triangulated where it can be, else with a fan around its centroid (which traverses the loop's
+  // edges backwards).
   for (uint32_t start = 0; start < n_now && boundary_edges && options.fill_holes; ++start) {
     if (next[start] == UINT32_MAX) continue;
     std::vector<uint32_t> loop;
+    std::vector<Vec3> rim_normal;
     for (uint32_t v = start; next[v] != UINT32_MAX;) {
       loop.push_back(v);
+      const Tri& t = m.triangles[next_face[v]];
+      const Vec3 n = triangle_normal_area2(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]);
+      const double len = norm(n);
+      rim_normal.push_back(len > 0 ? n * (1.0 / len) : Vec3{0, 0, 0});
       const uint32_t w = next[v];
       next[v] = UINT32_MAX;
       v = w;
     }
     boundary_edges -= loop.size();
+    ++r.holes_filled;
+    const double cost = static_cast<double>(loop.size()) * static_cast<double>(loop.size()) *
+                        static_cast<double>(loop.size()) / 6.0;
+    // (A loop of three around a lone triangle's back would be closed by that triangle reversed: a pillow of two
+    // faces with the same corners. The fan closes it with area.)
+    const bool lone_triangle = loop.size() == 3 && next_face[loop[0]] == next_face[loop[1]];
+    if (loop.size() <= kMaxTriangulatedLoop && cost <= budget && !lone_triangle) {
+      budget -= cost;
+      const size_t before = m.triangles.size();
+      if (triangulate_hole(m, loop, rim_normal, rim_edges, min_area2, m.triangles)) {
+        r.fill_triangles += m.triangles.size() - before;
+        continue;
+      }
+    }
+    ++r.holes_fanned;
     Vec3 c{0, 0, 0};
     for (uint32_t u : loop) c += m.positions[u];
     m.positions.push_back(c * (1.0 / static_cast<double>(loop.size())));
     const uint32_t centre = static_cast<uint32_t>(m.positions.size() - 1);
     for (size_t i = 0; i < loop.size(); ++i)
       m.triangles.push_back({centre, loop[(i + 1) % loop.size()], loop[i]});
-    ++r.holes_filled;
     r.fill_triangles += loop.size();
   }
 
@@ -304,7 +344,10 @@ std::vector<std::string> repair_summary(const RepairReport& r) {
   add(r.pinched_vertices_split, "pinched vertex copies made");
   if (r.holes_filled)
     out.push_back(std::to_string(r.holes_filled) + " hole(s) closed with " + std::to_string(r.fill_triangles) +
-                  " triangles");
+                  " triangles" +
+                  (r.holes_fanned
+                       ? " (" + std::to_string(r.holes_fanned) + " of them by a fan around a new centre vertex)"
+                       : std::string()));
   add(r.unreferenced_removed, "unreferenced vertices removed");
   return out;
 }

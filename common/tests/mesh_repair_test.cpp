@@ -1,4 +1,4 @@
-// repair_mesh on generated meshes: hole fans, face removals, pinch splitting, sliver flips, refusals.
+// repair_mesh on generated meshes: hole triangulations and fans, face removals, pinch splitting, sliver flips, refusals.
 #include "prm/mesh_repair.h"
 
 #include <gtest/gtest.h>
@@ -20,14 +20,35 @@ void expect_closed_manifold(const Mesh& m, int genus) {
   EXPECT_EQ(r.genus_sum(), genus);
 }
 
-TEST(MeshRepair, OpenCylinderGetsTwoFans) {
+TEST(MeshRepair, OpenCylinderGetsTwoFlatCaps) {
   const Mesh c = test::open_cylinder(16, 4);
   RepairReport rep;
   const Mesh m = repair_mesh(c, &rep);
   EXPECT_EQ(rep.holes_filled, 2u);
-  EXPECT_EQ(rep.fill_triangles, 32u);
+  EXPECT_EQ(rep.holes_fanned, 0u);
+  EXPECT_EQ(rep.fill_triangles, 28u);  // n - 2 a loop of n
+  EXPECT_EQ(m.num_vertices(), c.num_vertices());
+  EXPECT_EQ(m.num_faces(), c.num_faces() + 28);
+  expect_closed_manifold(m, 0);
+  // Each cap is a triangulation of its planar loop: every new triangle lies in z = 0 or z = 4.
+  for (size_t f = c.num_faces(); f < m.num_faces(); ++f) {
+    const Tri& t = m.triangles[f];
+    const double z = m.positions[t[0]][2];
+    EXPECT_TRUE(z == 0 || z == 4) << z;
+    EXPECT_EQ(m.positions[t[1]][2], z);
+    EXPECT_EQ(m.positions[t[2]][2], z);
+  }
+}
+
+TEST(MeshRepair, LongLoopsGetFansAroundTheirCentroids) {
+  // Loops longer than the triangulation takes (O(n^3)) are closed by the paper's fans.
+  const Mesh c = test::open_cylinder(500, 4);
+  RepairReport rep;
+  const Mesh m = repair_mesh(c, &rep);
+  EXPECT_EQ(rep.holes_filled, 2u);
+  EXPECT_EQ(rep.holes_fanned, 2u);
+  EXPECT_EQ(rep.fill_triangles, 1000u);
   EXPECT_EQ(m.num_vertices(), c.num_vertices() + 2);
-  EXPECT_EQ(m.num_faces(), c.num_faces() + 32);
   expect_closed_manifold(m, 0);
   // The fan centres are the loops' centroids: (0, 0, 0) and (0, 0, 4).
   const Vec3& a = m.positions[m.num_vertices() - 2];
@@ -43,7 +64,7 @@ TEST(MeshRepair, TorusWithHolesKeepsItsGenus) {
   RepairReport rep;
   const Mesh m = repair_mesh(t, &rep);
   EXPECT_EQ(rep.holes_filled, 2u);
-  EXPECT_EQ(rep.fill_triangles, 6u);
+  EXPECT_EQ(rep.fill_triangles, 2u);  // each hole a triangle again
   expect_closed_manifold(m, 1);
 }
 

@@ -699,7 +699,7 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
                        kExpectedGridRounds + (rate_distortion ? plan.lambda_rounds : 0));
   ProgressJob::stage("repair");
   // The remesher needs a consistently oriented 2-manifold. Its boundary loops stay open (issue 22: a range scan is
-  // an open surface), unless fill_holes closes them with the paper's fans (paper §4, the bunny protocol).
+  // an open surface), unless fill_holes closes them (paper §4, the bunny protocol; repair_mesh).
   const MeshReport check = input_check ? *input_check : validate_mesh(input);
   Mesh closed;
   RepairReport repair;
@@ -1111,7 +1111,7 @@ PackResult detail::pack_keeping_boundary_or_filling(const Mesh& input, const Pac
     PackResult r = attempt(input, filled);
     r.boundary_fallback = true;
     r.repair.notes.push_back("the remesher could not keep the open boundary (" + std::string(e.what()) + "): its " +
-                             std::to_string(r.repair.holes_filled) + " boundary loop(s) were filled with fans instead");
+                             std::to_string(r.repair.holes_filled) + " boundary loop(s) were closed instead");
     return r;
   }
 }

@@ -167,8 +167,9 @@ void add_pack_command(CLI::App& root) {
                 "With a .glb/.gltf output: also store the decoded geometry uncompressed, so that loaders without "
                 "PRM_mesh_compression show it (the extension is then not required)");
   cmd->add_flag("--fill-holes", opt->fill_holes,
-                "Close every boundary loop with a triangle fan around its centroid before remeshing (the paper's bunny "
-                "protocol, bench/table1). Default: the output keeps the input's boundary loops");
+                "Close every boundary loop before remeshing (the paper's bunny protocol, bench/table1; by the triangulation "
+                "of the loop that folds least, a fan around its centroid as the paper's for loops over 400 vertices). "
+                "Default: the output keeps the input's boundary loops");
   cmd->add_option("--boundary-simplification", opt->boundary_simplification,
                   "Open surfaces, with --target-error: before remeshing, thin out each boundary loop (collapse boundary "
                   "vertices along it) while it stays within this fraction of the target error of the input's loop; 0: "

@@ -50,7 +50,7 @@ void add_remesh_command(CLI::App& root) {
   cmd->add_flag("--naive-reliefs", opt->naive, "Reliefs by closest axis only (for comparison)");
   add_remesher_options(cmd, opt->error_flip_weight, opt->no_fit);
   cmd->add_flag("--fill-holes", opt->fill_holes,
-                "Close every boundary loop with a fan before remeshing (the paper's protocol); by default the loops "
+                "Close every boundary loop before remeshing (the paper's protocol; as `prm repair` does); by default the loops "
                 "are kept and the output has the same boundary loops as the input (issue 22)");
   cmd->add_flag("--no-local-refinement", opt->no_refine,
                 "With --target-error: no local refinement (by default, as in pack, vertices are inserted or moved "

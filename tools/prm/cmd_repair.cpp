@@ -1,6 +1,6 @@
 // prm repair IN -o OUT [--json]: removes faces with a repeated vertex and duplicate faces, splits pinched
-// vertices, flips away zero-area slivers, closes every hole with a fan around its centroid (paper §4, the
-// bunny). Refuses edges with three or more faces and inconsistent orientation
+// vertices, flips away zero-area slivers, closes every hole (the triangulation that folds least, or a fan around its
+// centroid: paper §4, the bunny). Refuses edges with three or more faces and inconsistent orientation
 // (common/include/prm/mesh_repair.h).
 #include <cstdio>
 #include <nlohmann/json.hpp>
@@ -20,8 +20,8 @@ void add_repair_command(CLI::App& root) {
   auto* cmd = root.add_subcommand(
       "repair",
       "Make a closed manifold: drop degenerate and duplicate faces, split pinched vertices, "
-      "close every hole with a fan around its centroid (refuses edges with 3+ faces and "
-      "inconsistent orientation)");
+      "close every hole by the triangulation of its loop that folds least (a fan around its centroid for a loop over "
+      "400 vertices); refuses edges with 3+ faces and inconsistent orientation");
   struct Options {
     std::string input, output;
     bool json = false;

@@ -14,21 +14,25 @@ struct RepairReport {
   size_t duplicate_removed = 0;       // faces repeating an earlier face's vertices
   size_t pinched_vertices_split = 0;  // copies made of pinched vertices, one per extra fan of faces
   size_t zero_area_flipped = 0;       // zero-area slivers removed by flipping their longest edge
-  size_t holes_filled = 0;            // boundary loops closed by a fan around the loop's centroid (paper §4)
+  size_t holes_filled = 0;            // boundary loops closed (by a triangulation of the loop, or a fan)
+  size_t holes_fanned = 0;            // of those, closed by a fan around a new vertex at the loop's centroid (paper §4)
   size_t fill_triangles = 0;
   size_t unreferenced_removed = 0;
   std::vector<std::string> notes;
 };
 
 struct RepairOptions {
-  // Close every boundary loop with a fan (paper §4, the bunny protocol). False: the boundary loops stay, the result
+  // Close every boundary loop (paper §4, the bunny protocol; by the triangulation that folds least, not the paper's
+  // fan, where the loop is short enough: hole_triangulation.h). False: the boundary loops stay, the result
   // is an oriented 2-manifold with boundary (what `prm pack` remeshes by default; issue 22).
   bool fill_holes = true;
 };
 
 // Removes repeated-index and duplicate faces, splits pinched vertices (one copy per extra fan of faces),
 // flips away zero-area slivers where that is safe (the others are kept and noted), closes every boundary loop
-// with a triangle fan around its centroid (paper §4) and drops unreferenced vertices. The result is closed,
+// (up to 400 vertices, within a total cost bound: by the triangulation of the loop whose largest dihedral angle is
+// smallest, Liepa 2003; otherwise, or where every triangulation would repeat an edge or have a triangle without
+// area, with a triangle fan around a new vertex at its centroid, paper §4) and drops unreferenced vertices. The result is closed,
 // manifold and consistently oriented. Throws prm::InputError naming the first offending edge for input that
 // cannot be repaired without guessing: an edge with three or more faces, or faces that are not consistently
 // oriented (after the face removals). Properties are dropped (the face set changes); comments are kept. Without

@@ -115,7 +115,7 @@ struct PackOptions {
   // The newest format 1.N the stream may need (encode_any_mesh): 4, or 3 (no patch contexts), or 2 (no seam context).
   int max_minor = codec::kFormatMinorPatchGrids;
   int effort = kDefaultEffort;  // kMinEffort..kMaxEffort (see above)
-  // Close every boundary loop with a fan before remeshing (RepairOptions::fill_holes; the paper's bunny protocol).
+  // Close every boundary loop before remeshing (RepairOptions::fill_holes; the paper's bunny protocol).
   // The output is then closed: on an open input, mode automatic is prm and mode general std::invalid_argument.
   // False: the output keeps the input's boundary loops (the remesher treats the mesh boundary as a seam with no
   // neighbour and never moves its vertices).
