@@ -546,7 +546,7 @@ PackResult finish_at(const SearchContext& ctx, const PackOptions& options, Remes
     const size_t base_coincident = count_coincident_vertices(decoded.value);
     const double aim = kDefaultMaxErrorPerTarget * options.target_error * ctx.full.diagonal();
     if (round_worst_sites(out.remesh.prm, decoded.value, to_mesh(decoded.value), out.report.vertex_order, ctx.full,
-                          aim, mask) > 0) {
+                          aim, out.remesh.error.max * ctx.full.diagonal(), mask) > 0) {
       codec::PrmOptions o = out.codec_options;
       o.rounded_heights = o.height_lambda > 0 ? mask.data() : nullptr;
       codec::EncodeReport report;

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "prm/aabb_tree.h"
+#include "prm/point_triangle_distance.h"
 #include "prm/remesh/lattice.h"
 #include "prm/surface_facing.h"
 #include "prm/surface_sampler.h"
@@ -23,6 +24,9 @@ namespace {
 // stream's max went up instead of down).
 constexpr size_t kSites = 8;
 constexpr double kSiteShare = 1.0;
+// in>pr: looked for when no decoded sample comes within this share of the stream's max; the input's samples near a
+// place past this share of the aim are weighed with its faces.
+constexpr double kMissedShare = 0.999;
 // Passes of one-step moves over a site's vertices.
 constexpr int kPasses = 2;
 // The faces' probes: this many a side per aim of the longest edge, at most kMaxDivisions (Metro's samples find a
@@ -48,6 +52,27 @@ double face_worst2(const Mesh& m, const Tri& t, const AabbTree& tree, double aim
   return worst;
 }
 
+// Each point's distance to `surface` where it lies farther than `near` (0 where within: AabbTree::within answers for
+// most points, cheaper than their closest points), and the points farther than `past` (>= near), farthest first.
+std::vector<size_t> farther(const std::vector<Vec3>& points, const AabbTree& surface, double near, double past,
+                            std::vector<double>& distance) {
+  distance.assign(points.size(), 0.0);
+  tbb::parallel_for(tbb::blocked_range<size_t>(0, points.size(), 1024), [&](const tbb::blocked_range<size_t>& r) {
+    AabbTree::Hit hint;
+    for (size_t i = r.begin(); i != r.end(); ++i)
+      if (!surface.within(points[i], near * near, hint)) {
+        surface.closest(points[i], hint);
+        distance[i] = std::sqrt(hint.distance2);
+      }
+  });
+  std::vector<size_t> out;
+  for (size_t i = 0; i < distance.size(); ++i)
+    if (distance[i] > past) out.push_back(i);
+  std::sort(out.begin(), out.end(),
+            [&](size_t x, size_t y) { return distance[x] != distance[y] ? distance[x] > distance[y] : x < y; });
+  return out;
+}
+
 Vec3 normal_of(const Mesh& m, const Tri& t) {
   return cross(m.positions[t[1]] - m.positions[t[0]], m.positions[t[2]] - m.positions[t[0]]);
 }
@@ -56,7 +81,7 @@ Vec3 normal_of(const Mesh& m, const Tri& t) {
 
 size_t round_worst_sites(remesh::PrmMesh& prm, const codec::DecodedMesh& decoded, const Mesh& decoded_mesh,
                          const std::vector<uint32_t>& vertex_order, const MetroReference& reference, double aim,
-                         std::vector<uint8_t>& held) {
+                         double max, std::vector<uint8_t>& held) {
   const double grid = static_cast<double>(prm.lattice.A) * prm.frame.step;
   // The places: the decoded mesh's samples as the reference's Metro takes them (its pr>in samples, bit for bit)
   // farther than kSiteShare x the aim, farthest first, at most kSites, each a grid size from a farther one.
@@ -73,28 +98,38 @@ size_t round_worst_sites(remesh::PrmMesh& prm, const codec::DecodedMesh& decoded
   so.faces = mo.sample_faces;
   so.seed = mo.seed;
   const SurfaceSamples samples = sample_surface(decoded_mesh, so);
-  // (Most samples lie within the aim: AabbTree::within answers for them, cheaper than their closest points.)
-  const double near2 = kSiteShare * kSiteShare * aim * aim;
-  std::vector<double> distance(samples.points.size(), 0.0);
-  tbb::parallel_for(tbb::blocked_range<size_t>(0, samples.points.size(), 1024), [&](const tbb::blocked_range<size_t>& r) {
-    AabbTree::Hit hint;
-    for (size_t i = r.begin(); i != r.end(); ++i)
-      if (!reference.tree().within(samples.points[i], near2, hint)) {
-        reference.tree().closest(samples.points[i], hint);
-        distance[i] = std::sqrt(hint.distance2);
-      }
-  });
-  std::vector<size_t> far;
-  for (size_t i = 0; i < distance.size(); ++i)
-    if (distance[i] > kSiteShare * aim) far.push_back(i);
-  std::sort(far.begin(), far.end(),
-            [&](size_t x, size_t y) { return distance[x] != distance[y] ? distance[x] > distance[y] : x < y; });
-  std::vector<Vec3> sites;
+  std::vector<double> distance;
+  const std::vector<size_t> far = farther(samples.points, reference.tree(), kSiteShare * aim, kSiteShare * aim, distance);
+  struct Place {
+    Vec3 at;                  // on the decoded mesh
+    std::vector<Vec3> missed;  // in>pr: the input's samples near it past kMissedShare x the aim
+  };
+  std::vector<Place> sites;
   for (size_t i : far) {
     if (sites.size() >= kSites) break;
     const Vec3& p = samples.points[i];
-    if (std::none_of(sites.begin(), sites.end(), [&](const Vec3& x) { return norm2(x - p) < grid * grid; }))
-      sites.push_back(p);
+    if (std::none_of(sites.begin(), sites.end(), [&](const Place& x) { return norm2(x.at - p) < grid * grid; }))
+      sites.push_back({p, {}});
+  }
+  // When the stream's max is the input's (in>pr: no decoded sample that far), its samples too.
+  const double pr_max = distance.empty() ? 0.0 : *std::max_element(distance.begin(), distance.end());
+  const AabbTree decoded_tree(decoded_mesh);
+  if (pr_max < kMissedShare * max) {
+    const SurfaceSamples input_samples = sample_surface(reference.mesh(), so);
+    std::vector<double> missed;
+    const std::vector<size_t> order =
+        farther(input_samples.points, decoded_tree, kMissedShare * aim, kSiteShare * aim, missed);
+    for (size_t i : order) {
+      if (sites.size() >= kSites) break;
+      const Vec3 at = decoded_tree.closest(input_samples.points[i]).point;
+      if (std::any_of(sites.begin(), sites.end(), [&](const Place& x) { return norm2(x.at - at) < grid * grid; }))
+        continue;
+      Place place{at, {}};
+      for (size_t j = 0; j < missed.size(); ++j)
+        if (missed[j] > 0 && norm2(input_samples.points[j] - input_samples.points[i]) < grid * grid)
+          place.missed.push_back(input_samples.points[j]);
+      sites.push_back(std::move(place));
+    }
   }
   if (sites.empty()) return 0;
   Mesh m = decoded_mesh;
@@ -120,7 +155,8 @@ size_t round_worst_sites(remesh::PrmMesh& prm, const codec::DecodedMesh& decoded
   std::vector<uint8_t> in_ring(m.triangles.size(), 0);
   std::vector<uint32_t> held_faces;
   size_t moved = 0;
-  for (const Vec3& at : sites) {
+  for (const Place& site : sites) {
+    const Vec3& at = site.at;
     // The site's vertices (of the faces whose centroid lies within a grid size) and the faces around them (ring).
     std::vector<uint32_t> site_vertices, ring;
     std::vector<uint8_t> in_site(nv, 0);
@@ -137,9 +173,23 @@ size_t round_worst_sites(remesh::PrmMesh& prm, const codec::DecodedMesh& decoded
         if (!std::exchange(in_ring[f], uint8_t{1})) ring.push_back(f);
     tbb::parallel_for(size_t{0}, ring.size(),
                       [&](size_t i) { worst2[ring[i]] = face_worst2(m, m.triangles[ring[i]], tree, aim); });
+    // The missed points' distances to the faces outside the ring (which do not move), then to the ring's.
+    std::vector<double> outside2(site.missed.size(), HUGE_VAL);
+    for (size_t i = 0; i < site.missed.size(); ++i) {
+      const AabbTree::Hit hit = decoded_tree.closest(site.missed[i]);
+      if (hit.found() && !in_ring[hit.face]) outside2[i] = hit.distance2;
+    }
     const auto ring_worst2 = [&] {
       double w = 0;
       for (uint32_t f : ring) w = std::max(w, worst2[f]);
+      for (size_t i = 0; i < site.missed.size(); ++i) {
+        double d2 = outside2[i];
+        for (uint32_t f : ring) {
+          const Tri& t = m.triangles[f];
+          d2 = std::min(d2, point_triangle_distance2(site.missed[i], m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]));
+        }
+        w = std::max(w, d2);
+      }
       return w;
     };
     if (ring_worst2() <= aim * aim) continue;

@@ -18,9 +18,12 @@ namespace prm::pipeline {
 // vertex along its relief's axis only: its height) where the worst of those faces' dense probes then comes down, in
 // up to two passes; no face may turn over or turn away from the input. The PRM's positions of the vertices of the
 // places that changed are set to their quantized points and `held` marks them (PrmOptions::rounded_heights: the
-// encoder keeps them there). Returns the number of moves (0: nothing changed, the PRM is as it was).
+// encoder keeps them there). When no decoded sample is as far as the stream's `max` (model units), the max is the
+// input's (in>pr): the input's samples past the aim make places too, the decoded mesh's nearest point to them, and
+// their distances to the place's faces are weighed with the probes (the horse at 1.3e-4 and effort 9: its tail's
+// tip, 1.099e-3 -> below 1.04e-3). Returns the number of moves (0: nothing changed, the PRM is as it was).
 size_t round_worst_sites(remesh::PrmMesh& prm, const codec::DecodedMesh& decoded, const Mesh& decoded_mesh,
                          const std::vector<uint32_t>& vertex_order, const MetroReference& reference, double aim,
-                         std::vector<uint8_t>& held);
+                         double max, std::vector<uint8_t>& held);
 
 }  // namespace prm::pipeline
