@@ -198,6 +198,10 @@ size_t round_worst_sites(remesh::PrmMesh& prm, const codec::DecodedMesh& decoded
       bool any = false;
       for (uint32_t v : site_vertices) {
         if (v >= vertex_order.size()) continue;
+        // At a pr>in place only a vertex of a face past the aim can bring its worst down.
+        if (site.missed.empty() && std::none_of(vertex_faces[v].begin(), vertex_faces[v].end(),
+                                                [&](uint32_t f) { return worst2[f] > aim * aim; }))
+          continue;
         const uint32_t pv = vertex_order[v];
         const bool lattice = pv < prm.vertex_relief.size() && prm.vertex_relief[pv] >= 0;
         std::vector<std::array<int, 3>> steps;
