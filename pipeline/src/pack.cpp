@@ -26,6 +26,7 @@
 #include "prm/remesh/lattice.h"
 #include "prm/remesh/relief_grids.h"
 #include "height_guard.h"
+#include "worst_site_rounding.h"
 #include "prm/pipeline/stream_check.h"
 
 namespace prm::pipeline {
@@ -467,6 +468,48 @@ PackResult finish_at(const SearchContext& ctx, const PackOptions& options, Remes
     rm.error_at_full_density = false;
     zero_area = zero_area_of(out.stream);
   }
+  // --local-refinement (no max_error): the stream's worst places past kDefaultMaxErrorPerTarget x the target, their
+  // vertices' quantized points moved by a step where that brings them nearer (round_worst_sites), kept when the
+  // stream then meets the target with a smaller max and turns no more triangles (h22t: the horse at 1.3e-4). Before
+  // the heights' guard, which it spares a measurement of the rounded heights where it brings the max within the aim.
+  const auto round_sites = [&] {
+    if (zero_area > 0 || !ctx.plan.local_refinement || options.max_error > 0 || !(options.target_error > 0) ||
+        out.remesh.error.max <= kDefaultMaxErrorPerTarget * options.target_error)
+      return;
+    const auto decoded = codec::decode(out.stream.data(), out.stream.size());
+    if (!decoded.ok()) throw InputError("the encoder's stream does not decode (a codec bug): " + decoded.status.message);
+    const std::vector<Vec3> positions = out.remesh.prm.mesh.positions;
+    std::vector<uint8_t> mask = out.codec_options.rounded_heights ? out_held : std::vector<uint8_t>{};
+    const size_t base_coincident = count_coincident_vertices(decoded.value);
+    const double aim = kDefaultMaxErrorPerTarget * options.target_error * ctx.full.diagonal();
+    if (round_worst_sites(out.remesh.prm, decoded.value, to_mesh(decoded.value), out.report.vertex_order, ctx.full,
+                          aim, out.remesh.error.max * ctx.full.diagonal(), mask) > 0) {
+      codec::PrmOptions o = out.codec_options;
+      o.rounded_heights = o.height_lambda > 0 ? mask.data() : nullptr;
+      codec::EncodeReport report;
+      std::vector<uint8_t> stream;
+      size_t za = 0, coincident = 0;
+      const remesh::ErrorEstimate e = encode_and_measure(
+          out.remesh.prm, o, &report, &stream,
+          [&](const Mesh& m) {
+            if (facing_guard && turned_triangles(m, ctx.full.mesh(), ctx.full.tree(), &base).size() > base_turned)
+              return remesh::ErrorEstimate{HUGE_VAL, HUGE_VAL};
+            return measure_with(ctx.full, m);
+          },
+          &za, &coincident);
+      if (za == 0 && coincident <= base_coincident && e.rms <= kQuantizationMargin * options.target_error &&
+          e.max < out.remesh.error.max) {
+        out.stream = std::move(stream);
+        out.report = report;
+        out.remesh.error = e;
+        out_held = std::move(mask);
+        out.codec_options = o;
+        out.codec_options.rounded_heights = o.height_lambda > 0 ? out_held.data() : nullptr;
+      } else {
+        out.remesh.prm.mesh.positions = positions;
+      }
+    }
+  };
   // The search measured with fewer samples than the report: the chosen stream at full density. Where that misses
   // the target, smaller lambdas (then rounding) are tried at full density; `measured` false if none meets it.
   if (&ctx.search != &ctx.full && (options.target_error > 0 || options.max_error > 0) && zero_area == 0) {
@@ -544,6 +587,7 @@ PackResult finish_at(const SearchContext& ctx, const PackOptions& options, Remes
       keep_options(c.options);
       return true;
     };
+    if (met) round_sites();
     if (met && ctx.plan.local_refinement && !(options.max_error > 0) && options.target_error > 0 &&
         out.remesh.error.max > aim && rounded_max <= kHeightGuardSparseMargin * aim &&
         out.codec_options.height_lambda > 0) {
@@ -561,6 +605,7 @@ PackResult finish_at(const SearchContext& ctx, const PackOptions& options, Remes
     }
     if (measured) *measured = met;
   }
+  if (&ctx.search == &ctx.full) round_sites();  // (the search measured at full density: no check above)
   if (zero_area > 0)
     throw remesh::TargetNotReached(std::to_string(zero_area) + " triangle(s) of the piecewise regular mesh have zero "
                                    "area once quantized to " + std::to_string(bits) + " bits (step scale " +
