@@ -251,6 +251,7 @@ Remeshed remesh_at(const SearchContext& ctx, const PackOptions& options, int bit
   // target.
   ro.max_error = kQuantizationMargin * options.max_error;
   set_refinement(ro, options.target_error, options.max_error, ctx.plan.local_refinement, options.refine_facing_guard);
+  ro.refine_rounds = kPackRefineRounds;  // `prm remesh` (set_refinement alone) takes ResampleOptions' 20
   ro.defer_refinement = defer_refinement;
   // The search measures what the decoder will output: the candidate quantized to the stream's frame (its lattice
   // vertices are exact already; the heights and the other vertices round to the nearest step), or, when the

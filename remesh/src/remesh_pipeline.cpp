@@ -149,6 +149,7 @@ RemeshResult remesh(const Mesh& input, const RemeshOptions& options, const Error
   ro.refine_thin_sheets = options.refine_thin_sheets;
   ro.refine_notches = options.refine_notches;
   ro.refine_facing_guard = options.refine_facing_guard;
+  ro.refine_rounds = options.refine_rounds;
   const int64_t coarsest = int64_t{1} << options.bits;  // a grid wider than the bounding box
   auto grid_of = [&](double size) {
     const double steps = size / ro.frame.step;

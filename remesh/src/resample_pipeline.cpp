@@ -78,7 +78,7 @@ void finish(PrmMesh& prm, const Mesh& input, const AabbTree& tree, const Resampl
     // h22r: `prm remesh horse.ply --target-error 2e-4`'s 135-degree crease at (0.0258, 0.0157, -0.0200) was still
     // being split in round 12 (a lattice vertex 1.16x the bound from the input, its faces 1.2-1.3x) and the output
     // kept 1.715e-3 there (8.57x the target); with 16 rounds 1.573e-3, with 20 below 1.45e-3.
-    if (options.refine_notches) dro.max_rounds = 20;
+    if (options.refine_notches) dro.max_rounds = options.refine_rounds;
     std::vector<double> face_deviation2;
     const DeviationRefinementStats ds = refine_deviations(prm, input, tree, dro, &face_deviation2);
     st.deviation_inserts = ds.inserted;

@@ -75,6 +75,10 @@ constexpr double kRefineShare = 0.6;
 // target_error: the thin-sheet steps (remesh::DeviationRefinementOptions::thin_sheets) converge, so the bound can sit
 // nearer the max aimed at than --max-error's kRefineShare (bench/README.md "Worst-case error").
 constexpr double kLocalRefineShare = 0.85;
+// The local refinement's rounds in pack (remesh::ResampleOptions::refine_rounds; `prm remesh` takes 20): the 2e-4
+// streams are the same with 20 (the feline +1 B), but the horse at 1.3e-4 grew from 8,606 to 8,726 B and took
+// ~0.5-1 s CPU more for the same max (bench/README.md "Worst-case error", h22r and h22t).
+constexpr size_t kPackRefineRounds = 12;
 
 struct PackOptions {
   PackMode mode = PackMode::automatic;

@@ -31,6 +31,7 @@ struct RemeshOptions {
   bool refine_thin_sheets = true;  // ResampleOptions::refine_thin_sheets
   bool refine_notches = true;      // ResampleOptions::refine_notches
   bool refine_facing_guard = true;  // ResampleOptions::refine_facing_guard
+  size_t refine_rounds = 20;        // ResampleOptions::refine_rounds
   // With target_error, refine_error and no max_error: the search's grids are resampled without the local refinement,
   // and only the grid it chooses is refined (the next coarser one first when it missed the target by at most
   // kRefineLastMargin; then the next finer grids, at most kRefineLastTries in all, until one refined meets the

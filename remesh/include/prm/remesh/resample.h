@@ -56,6 +56,9 @@ struct ResampleOptions {
   // With the notch steps: no step nor rounding makes a triangle face away from the input
   // (DeviationRefinementOptions::facing_guard; round_towards_input's facing_guard).
   bool refine_facing_guard = true;
+  // With the notch steps: the refinement's rounds (DeviationRefinementOptions::max_rounds). 20 for `prm remesh`
+  // (h22r: the horse's 135-degree crease was still being split in round 12); pack asks for 12 (pipeline::kPackRefineRounds).
+  size_t refine_rounds = 20;
   // The AABB tree of the layout's input mesh, if the caller has one (null: built for each call; at 2M input
   // vertices that is 4.3M triangles, 470 MB and seconds a grid round).
   const AabbTree* input_tree = nullptr;
