@@ -713,6 +713,23 @@ bool refines_locally(const PackOptions& options) {
          (options.local_refinement == R::automatic && effort_plan(options.effort).local_refinement);
 }
 
+size_t pick_bounded_attempt(const std::vector<BoundedAttempt>& attempts, double bound, bool& met_bound) {
+  size_t pick = SIZE_MAX;
+  for (size_t i = 0; i < attempts.size(); ++i)
+    if (attempts[i].max <= bound && (pick == SIZE_MAX || attempts[i].bytes < attempts[pick].bytes)) pick = i;
+  met_bound = pick != SIZE_MAX;
+  if (met_bound || attempts.empty()) return met_bound ? pick : 0;
+  // None within the bound: the nearest to it among those at most kNoBoundBytes x the smallest stream.
+  size_t smallest = 0;
+  for (size_t i = 1; i < attempts.size(); ++i)
+    if (attempts[i].bytes < attempts[smallest].bytes) smallest = i;
+  const double budget = kNoBoundBytes * static_cast<double>(attempts[smallest].bytes);
+  pick = smallest;
+  for (size_t i = 0; i < attempts.size(); ++i)
+    if (static_cast<double>(attempts[i].bytes) <= budget && attempts[i].max < attempts[pick].max) pick = i;
+  return pick;
+}
+
 void set_refinement(remesh::RemeshOptions& ro, double target_error, double max_error, bool local, bool facing_guard) {
   ro.refine_error = max_error > 0 ? kRefineShare * max_error
                     : local       ? kLocalRefineShare * kDefaultMaxErrorPerTarget * target_error
@@ -1075,22 +1092,10 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
         final_bytes(tried, r);
         if (met) refined.push_back(std::move(r));  // one that misses the RMS target at full density is no candidate
       }
-      size_t pick = SIZE_MAX;
-      for (size_t i = 0; i < refined.size(); ++i)
-        if (within(refined[i]) && (pick == SIZE_MAX || refined[i].stream.size() < refined[pick].stream.size())) pick = i;
-      const bool met_bound = pick != SIZE_MAX;
-      if (!met_bound) {
-        // None within the bound: the nearest to it among those at most kNoBoundBytes x the smallest stream.
-        size_t smallest = 0;
-        for (size_t i = 1; i < refined.size(); ++i)
-          if (refined[i].stream.size() < refined[smallest].stream.size()) smallest = i;
-        const double budget = kNoBoundBytes * static_cast<double>(refined[smallest].stream.size());
-        pick = smallest;
-        for (size_t i = 0; i < refined.size(); ++i)
-          if (static_cast<double>(refined[i].stream.size()) <= budget &&
-              refined[i].remesh.error.max < refined[pick].remesh.error.max)
-            pick = i;
-      }
+      std::vector<BoundedAttempt> attempts;
+      for (const PackResult& r : refined) attempts.push_back({r.stream.size(), r.remesh.error.max});
+      bool met_bound = false;
+      const size_t pick = pick_bounded_attempt(attempts, bound, met_bound);
       out = std::move(refined[pick]);
       out.tried = std::move(tried);
       const auto frame = [&](int bits, double scale, int64_t grid, size_t bytes, double max) {

@@ -232,6 +232,29 @@ TEST(LocalRefinement, SeparationKeepsVenusKnifeEdgeOnTheInput) {
   EXPECT_LE(worst, 1.6e-3);
 }
 
+// When none of the search's refined attempts meets 8x, the one with the smallest max within kNoBoundBytes (5%) of the
+// smallest stream is kept: the six attempts of the horse at 1.3e-4 and effort 9 in 1af193d's run (bench/README.md
+// "Where the bound stands", second session), 8,340 B at 8.60x instead of the smallest, 8,204 B at 13.69x.
+TEST(PackMaxError, NoAttemptWithinTheBoundKeepsTheNearestWithinFivePercent) {
+  const double t = 1.3e-4;
+  const std::vector<prm::pipeline::BoundedAttempt> a = {{8204, 13.69 * t}, {8301, 12.41 * t}, {8340, 8.60 * t},
+                                                        {8388, 12.38 * t}, {8721, 9.59 * t},  {10533, 11.47 * t}};
+  bool met = true;
+  EXPECT_EQ(prm::pipeline::pick_bounded_attempt(a, 8 * t, met), 2u);
+  EXPECT_FALSE(met);
+  // 8,721 B is past 5% of 8,204: its 9.59x does not count against 8,340's 8.60x; without 8,340 the nearest within 5%
+  // is 8,388 B at 12.38x.
+  const std::vector<prm::pipeline::BoundedAttempt> b = {a[0], a[1], a[3], a[4], a[5]};
+  EXPECT_EQ(prm::pipeline::pick_bounded_attempt(b, 8 * t, met), 2u);
+  EXPECT_FALSE(met);
+  // One within the bound: the smallest such stream, even past 5%.
+  const std::vector<prm::pipeline::BoundedAttempt> c = {a[0], {9000, 7.9 * t}, {9500, 7.0 * t}, a[2]};
+  EXPECT_EQ(prm::pipeline::pick_bounded_attempt(c, 8 * t, met), 1u);
+  EXPECT_TRUE(met);
+  EXPECT_EQ(prm::pipeline::pick_bounded_attempt({}, 8 * t, met), 0u);
+  EXPECT_FALSE(met);
+}
+
 #else
 
 TEST(PackMaxErrorHeavy, MaxErrorWithTargetErrorIsMetByTheDecodedStream) {
@@ -349,18 +372,18 @@ TEST(PackMaxErrorHeavy, SearchKeepsAnAttemptWithin8xAtEffort4) {
   EXPECT_NE(note.find("the smallest within the bound"), std::string::npos) << note;
 }
 
-// When none of the search's refined attempts meets 8x, the one with the smallest max within kNoBoundBytes (5%) of the
-// smallest stream is kept: the horse at 1.3e-4 and effort 9 (every attempt refined), 8,340 B at 8.60x instead of the
-// smallest, 8,204 B at 13.69x. Fails with the smallest kept (13.69x).
-TEST(PackMaxErrorHeavy, NoAttemptWithin8xKeepsTheNearestWithinFivePercent) {
+// The horse at 1.3e-4 and effort 9 (every attempt refined): until this session none of its six attempts was within
+// 8x (8,330 B at 8.46x kept, the nearest within 5%); with h22r's groove moves and h22t's worst-site rounding the
+// attempt at 12 bits x1.834 refines to 7.99x, 8,255 B, smaller than that, and the search keeps it.
+TEST(PackMaxErrorHeavy, EffortNineKeepsTheHorsesAttemptWithin8xAtOnePointThreeEMinus4) {
   PackOptions o;
   o.target_error = 1.3e-4;
   o.effort = prm::pipeline::kMaxEffort;
   std::string note;
   const prm::DistanceReport d = packed_distance("horse.ply", o, &note);
   EXPECT_LE(d.rel(d.rms), o.target_error);
-  EXPECT_LE(d.rel(d.max), 9.0 * o.target_error);
-  EXPECT_NE(note.find("the nearest to it within 5%"), std::string::npos) << note;
+  EXPECT_LE(d.rel(d.max), prm::pipeline::kDefaultMaxErrorPerTarget * o.target_error);
+  EXPECT_NE(note.find("the smallest within the bound"), std::string::npos) << note;
 }
 
 // `prm remesh FILE --target-error 2e-4` (12 bits, refined as pack refines): the remesh's distance to the input, with

@@ -228,6 +228,15 @@ bool refines_locally(const PackOptions& options);
 // refined, no notch steps; otherwise, when `local`, at kLocalRefineShare x kDefaultMaxErrorPerTarget x target_error,
 // only the chosen grid refined; otherwise none. `prm remesh --target-error` refines through it too (issue 22).
 void set_refinement(remesh::RemeshOptions& ro, double target_error, double max_error, bool local, bool facing_guard);
+
+// The search's refined attempts when the kept one's max passed the bound: each one's stream bytes and max error.
+struct BoundedAttempt {
+  size_t bytes = 0;
+  double max = 0;
+};
+// The attempt kept: the smallest stream whose max is within `bound` (met_bound true); when none is, the smallest
+// max among the streams at most kNoBoundBytes x the smallest (met_bound false). 0 for no attempts.
+size_t pick_bounded_attempt(const std::vector<BoundedAttempt>& attempts, double bound, bool& met_bound);
 constexpr double kHeightTolerance = 1.5;
 // The step scales the search tries at the best bit depth: eighths of an octave towards the next coarser depth. The
 // grid size is a whole number of steps, so these also move it in finer increments than the bit depths alone.
