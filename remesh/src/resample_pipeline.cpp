@@ -263,6 +263,7 @@ PrmMesh resample_and_merge(const LayoutInput& layout, const ResampleOptions& opt
   if (options.fit_heights) {
     HeightFitOptions ho;
     ho.reuse_faces = options.height_fit_reuse_faces;
+    ho.closest_faces = &merged.sample_face;
     const HeightFitStats hs = fit_heights(prm, input, tree, ho);
     st.heights_moved = hs.moved;
     st.height_moves_reverted = hs.reverted;

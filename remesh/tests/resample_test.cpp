@@ -3,6 +3,9 @@
 #include <map>
 #include <tuple>
 
+#include "../src/height_fitting.h"
+#include "../src/triangle_samples.h"
+#include "prm/aabb_tree.h"
 #include "prm/error.h"
 #include "prm/remesh/lattice.h"
 #include "prm/remesh/reliefs.h"
@@ -129,6 +132,49 @@ TEST(Resample, SelfOverlappingReliefWorks) {
   std::printf("ramp: V %zu F %zu regular %.1f%% overlapping lattice points %d\n", prm.stats.vertices, prm.stats.faces,
               100.0 * prm.stats.regular_faces / prm.stats.faces, overlaps);
   EXPECT_GT(static_cast<double>(prm.stats.regular_faces) / static_cast<double>(prm.stats.faces), 0.7);
+}
+
+
+// HeightFitOptions::closest_faces (the seam error flips' closest input faces of each face's samples): the first
+// iteration takes its points on those faces instead of searching, and the heights are the searched ones, bit for bit.
+TEST(HeightFit, ClosestFacesGiveTheSearchedHeights) {
+  const Mesh sphere = test::icosphere(5, 1.0, 0.05);
+  ReliefOptions rel;
+  rel.naive = true;
+  const ReliefLayout layout = build_reliefs(sphere, rel);
+  std::vector<int> axes;
+  for (const Relief& r : layout.reliefs) axes.push_back(r.axis);
+  LayoutInput in;
+  in.refined = &layout.mesh;
+  in.face_relief = &layout.face_relief;
+  in.relief_axis = &axes;
+  in.input = &sphere;
+  ResampleOptions o;
+  o.frame = frame_of_mesh(sphere, 12);
+  o.grid = 40;
+  o.fit_heights = false;
+  const PrmMesh merged = resample_and_merge(in, o);
+  const AabbTree tree(sphere);
+  std::vector<uint32_t> faces;
+  for (const Tri& t : merged.mesh.triangles)
+    for (const auto& w : kTriangleSamples) {
+      const Vec3& a = merged.mesh.positions[t[0]];
+      const Vec3& b = merged.mesh.positions[t[1]];
+      const Vec3& c = merged.mesh.positions[t[2]];
+      faces.push_back(faces.size() % 5 == 3 ? AabbTree::kNoFace : tree.closest(a * w[0] + b * w[1] + c * w[2]).face);
+    }
+  PrmMesh searched = merged, given = merged;
+  const HeightFitStats s1 = fit_heights(searched, sphere, tree, HeightFitOptions());
+  HeightFitOptions with_faces;
+  with_faces.closest_faces = &faces;
+  const HeightFitStats s2 = fit_heights(given, sphere, tree, with_faces);
+  EXPECT_GT(s1.moved, 100u);
+  EXPECT_EQ(s1.moved, s2.moved);
+  EXPECT_EQ(s1.reverted, s2.reverted);
+  ASSERT_EQ(searched.mesh.positions.size(), given.mesh.positions.size());
+  size_t differ = 0;
+  for (size_t v = 0; v < given.mesh.positions.size(); ++v) differ += searched.mesh.positions[v] != given.mesh.positions[v];
+  EXPECT_EQ(differ, 0u);
 }
 
 }  // namespace
