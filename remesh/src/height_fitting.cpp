@@ -53,12 +53,19 @@ HeightFitStats fit_heights(PrmMesh& prm, const Mesh& input, const AabbTree& tree
     normal0[f] = normalized(triangle_normal_area2(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]));
   }
   // A triangle is flipped when its normal is 90 degrees or more from the normal of the input face nearest to its
-  // centroid (the remesher's own test): the fit must not flip a triangle that was not.
+  // centroid (the remesher's own test): the fit must not flip a triangle that was not. The input face it finds is
+  // kept (HeightFitOptions::centroid_faces) until a corner moves.
+  std::vector<uint32_t>* nearest = options.centroid_faces;
+  if (nearest) nearest->assign(nf, AabbTree::kNoFace);
   auto flipped = [&](uint32_t f) {
     const Tri& t = m.triangles[f];
     const Vec3 n2 = triangle_normal_area2(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]);
     if (!(norm2(n2) > 0)) return true;
-    return !faces_surface(n2, (m.positions[t[0]] + m.positions[t[1]] + m.positions[t[2]]) * (1.0 / 3.0), input, tree);
+    return !faces_surface(n2, (m.positions[t[0]] + m.positions[t[1]] + m.positions[t[2]]) * (1.0 / 3.0), input, tree,
+                          nearest ? &(*nearest)[f] : nullptr);
+  };
+  auto forget_nearest = [&](uint32_t f) {
+    if (nearest) (*nearest)[f] = AabbTree::kNoFace;
   };
   std::vector<uint8_t> was_flipped(nf);
   tbb::parallel_for(size_t{0}, nf, [&](size_t f) { was_flipped[f] = flipped(static_cast<uint32_t>(f)); });
@@ -158,11 +165,13 @@ HeightFitStats fit_heights(PrmMesh& prm, const Mesh& input, const AabbTree& tree
     std::vector<uint32_t> check_faces;
     for (uint32_t v : touched)
       if (m.positions[v] != before[v])
-        for (uint32_t f : vertex_faces[v])
+        for (uint32_t f : vertex_faces[v]) {
+          forget_nearest(f);
           if (!was_flipped[f] && flip_state[f] != kFlipUnknownMark) {
             flip_state[f] = kFlipUnknownMark;
             check_faces.push_back(f);
           }
+        }
     tbb::parallel_for(size_t{0}, check_faces.size(), [&](size_t k) {
       flip_state[check_faces[k]] = flipped(check_faces[k]) ? kFlipYes : kFlipNo;
     });
@@ -181,7 +190,10 @@ HeightFitStats fit_heights(PrmMesh& prm, const Mesh& input, const AabbTree& tree
           for (uint32_t u : t)
             if (m.positions[u] != before[u]) {
               m.positions[u] = before[u];
-              for (uint32_t g : vertex_faces[u]) flip_state[g] = kFlipUnknown;
+              for (uint32_t g : vertex_faces[u]) {
+                flip_state[g] = kFlipUnknown;
+                forget_nearest(g);
+              }
               shift[u] = dot(before[u] - start[u], axis_vector(axis[u]));
               ++stats.reverted;
               again = true;

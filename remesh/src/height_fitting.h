@@ -24,6 +24,9 @@ struct HeightFitOptions {
   // the face's points (triangle_samples.h) at the positions given, or AabbTree::kNoFace (MergedMesh::sample_face).
   // The first iteration takes its closest point there instead of searching. Null: none.
   const std::vector<uint32_t>* closest_faces = nullptr;
+  // When given, set to: per face, the input face nearest its centroid at the returned positions
+  // (AabbTree::closest((a + b + c) * (1.0 / 3.0)).face, the flip test's), or AabbTree::kNoFace where not known.
+  std::vector<uint32_t>* centroid_faces = nullptr;
 };
 
 struct HeightFitStats {

@@ -17,7 +17,7 @@ namespace prm::remesh {
 namespace {
 
 // Resampling on the naive layout (each face to its closest axis): many small reliefs, a hard case for merging.
-PrmMesh run(const Mesh& m, int64_t grid) {
+PrmMesh run(const Mesh& m, int64_t grid, bool fit_heights = true) {
   ReliefOptions ro;
   ro.naive = true;
   const ReliefLayout layout = build_reliefs(m, ro);
@@ -31,6 +31,7 @@ PrmMesh run(const Mesh& m, int64_t grid) {
   ResampleOptions o;
   o.frame = frame_of_mesh(m, 12);
   o.grid = grid;
+  o.fit_heights = fit_heights;
   return resample_and_merge(in, o);
 }
 
@@ -137,23 +138,10 @@ TEST(Resample, SelfOverlappingReliefWorks) {
 
 // HeightFitOptions::closest_faces (the seam error flips' closest input faces of each face's samples): the first
 // iteration takes its points on those faces instead of searching, and the heights are the searched ones, bit for bit.
+// And the faces nearest the centroids it hands on (HeightFitOptions::centroid_faces) are the search's.
 TEST(HeightFit, ClosestFacesGiveTheSearchedHeights) {
   const Mesh sphere = test::icosphere(5, 1.0, 0.05);
-  ReliefOptions rel;
-  rel.naive = true;
-  const ReliefLayout layout = build_reliefs(sphere, rel);
-  std::vector<int> axes;
-  for (const Relief& r : layout.reliefs) axes.push_back(r.axis);
-  LayoutInput in;
-  in.refined = &layout.mesh;
-  in.face_relief = &layout.face_relief;
-  in.relief_axis = &axes;
-  in.input = &sphere;
-  ResampleOptions o;
-  o.frame = frame_of_mesh(sphere, 12);
-  o.grid = 40;
-  o.fit_heights = false;
-  const PrmMesh merged = resample_and_merge(in, o);
+  const PrmMesh merged = run(sphere, 40, false);
   const AabbTree tree(sphere);
   std::vector<uint32_t> faces;
   for (const Tri& t : merged.mesh.triangles)
@@ -167,13 +155,29 @@ TEST(HeightFit, ClosestFacesGiveTheSearchedHeights) {
   const HeightFitStats s1 = fit_heights(searched, sphere, tree, HeightFitOptions());
   HeightFitOptions with_faces;
   with_faces.closest_faces = &faces;
+  std::vector<uint32_t> centroid_faces;
+  with_faces.centroid_faces = &centroid_faces;
   const HeightFitStats s2 = fit_heights(given, sphere, tree, with_faces);
+  // HeightFitOptions::centroid_faces: where known, the search's answer at the returned positions.
+  ASSERT_EQ(centroid_faces.size(), given.mesh.triangles.size());
+  size_t known = 0, wrong = 0;
+  for (size_t f = 0; f < centroid_faces.size(); ++f) {
+    if (centroid_faces[f] == AabbTree::kNoFace) continue;
+    ++known;
+    const Tri& t = given.mesh.triangles[f];
+    const std::vector<Vec3>& x = given.mesh.positions;
+    const Vec3 centroid = (x[t[0]] + x[t[1]] + x[t[2]]) * (1.0 / 3.0);
+    wrong += tree.closest(centroid).face != centroid_faces[f];
+  }
+  EXPECT_GT(known, given.mesh.triangles.size() / 2);
+  EXPECT_EQ(wrong, 0u);
   EXPECT_GT(s1.moved, 100u);
   EXPECT_EQ(s1.moved, s2.moved);
   EXPECT_EQ(s1.reverted, s2.reverted);
   ASSERT_EQ(searched.mesh.positions.size(), given.mesh.positions.size());
   size_t differ = 0;
-  for (size_t v = 0; v < given.mesh.positions.size(); ++v) differ += searched.mesh.positions[v] != given.mesh.positions[v];
+  for (size_t v = 0; v < given.mesh.positions.size(); ++v)
+    differ += searched.mesh.positions[v] != given.mesh.positions[v];
   EXPECT_EQ(differ, 0u);
 }
 
