@@ -2,6 +2,7 @@
 // the surface closer to the input.
 #include "prm/vec3.h"
 #include "seam_optimizer.h"
+#include "triangle_samples.h"
 
 namespace prm::remesh {
 
@@ -26,18 +27,15 @@ constexpr double kErrorFlipGain = 0.1;
 // `stop` finite, returns as soon as base + (the error so far) >= stop, with the error so far: every sample adds a
 // distance >= 0 and rounding is monotone, so then base + (the full error) >= stop as well.
 double SeamOptimizer::triangle_error(const Vec3& a, const Vec3& b, const Vec3& c, AabbTree::Hit& hint,
-                                     double base, double stop) const {
-  static constexpr double kSamples[kTriangleErrorSamples][3] = {
-      {1.0 / 3, 1.0 / 3, 1.0 / 3},   {2.0 / 3, 1.0 / 6, 1.0 / 6},   {1.0 / 6, 2.0 / 3, 1.0 / 6},
-      {1.0 / 6, 1.0 / 6, 2.0 / 3},   {1.0 / 6, 5.0 / 12, 5.0 / 12}, {5.0 / 12, 1.0 / 6, 5.0 / 12},
-      {5.0 / 12, 5.0 / 12, 1.0 / 6}};
+                                     double base, double stop, uint32_t* faces) const {
   const double area = norm(cross(b - a, c - a));
   double sum = 0;
   const double n = static_cast<double>(error_samples_);
   for (int si = 0; si < error_samples_; ++si) {
-    const auto& w = kSamples[si];
+    const auto& w = kTriangleSamples[si];
     tree_.closest(a * w[0] + b * w[1] + c * w[2], hint);
     if (hint.found()) sum += hint.distance2;
+    if (faces) faces[si] = hint.face;
     if (base + sum * area / n >= stop) break;
   }
   return sum * area / n;
@@ -88,12 +86,17 @@ size_t SeamOptimizer::reduce_error_by_flips() {
   double sum = 0;
   size_t faces = 0, seen = 0;
   AabbTree::Hit hint;
+  // The input faces found for each face's samples, with its corners in that order (MergedMesh::sample_face).
+  unit_faces_.assign(kTriangleErrorSamples * mesh_.n_faces(), AabbTree::kNoFace);
+  unit_corners_.assign(mesh_.n_faces(), {-1, -1, -1});
   for (auto f : mesh_.faces()) {
     if (mesh_.status(f).deleted()) continue;
     if (seen++ % error_unit_stride_ != 0) continue;  // SeamOptions::error_unit_stride
     auto it = mesh_.cfv_iter(f);
     const VH a = *it, b = *++it, c = *++it;
-    sum += triangle_error(pos(a), pos(b), pos(c), hint);
+    const size_t i = static_cast<size_t>(f.idx());
+    sum += triangle_error(pos(a), pos(b), pos(c), hint, 0, HUGE_VAL, &unit_faces_[kTriangleErrorSamples * i]);
+    unit_corners_[i] = {a.idx(), b.idx(), c.idx()};
     ++faces;
   }
   const double error_unit = faces ? sum / static_cast<double>(faces) : 0;

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <vector>
 
 #include "prm/aabb_tree.h"
 #include "prm/mesh.h"
@@ -18,6 +20,13 @@ struct HeightFitOptions {
   // inside it (AabbTree::well_inside): the triangle the same sample had in the previous iteration, else the previous
   // sample's. Nearly always the same point; pack's effort 0 (on the venus, the samples' query time 0.48 -> 0.32 s).
   bool reuse_faces = false;
+  // Without reuse_faces: per face of the PRM, kTriangleErrorSamples entries, the input triangle closest to each of
+  // the face's points (triangle_samples.h) at the positions given, or AabbTree::kNoFace (MergedMesh::sample_face).
+  // The first iteration takes its closest point there instead of searching. Null: none.
+  const std::vector<uint32_t>* closest_faces = nullptr;
+  // When given, set to: per face, the input face nearest its centroid at the returned positions
+  // (AabbTree::closest((a + b + c) * (1.0 / 3.0)).face, the flip test's), or AabbTree::kNoFace where not known.
+  std::vector<uint32_t>* centroid_faces = nullptr;
 };
 
 struct HeightFitStats {

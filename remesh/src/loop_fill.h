@@ -30,6 +30,10 @@ struct MergedMesh {
   std::vector<int32_t> face_relief;  // the relief a face came from; -1 for loop-fill triangles
   std::vector<std::pair<int32_t, int32_t>> coincident;  // vertex pairs at one point of a seam (see above)
   size_t fill_triangles = 0;
+  // Set by optimize_seams: per face, kTriangleErrorSamples entries, the input triangle closest to each of its
+  // kTriangleSamples points (triangle_samples.h), as the error flips' mean triangle error found it, on a face those
+  // flips left as it was; AabbTree::kNoFace on the others and the faces it skipped. Empty: no error flips.
+  std::vector<uint32_t> sample_face;
 };
 
 // reliefs[r] is the resampled relief r of the view's refined mesh.

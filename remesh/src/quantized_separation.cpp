@@ -69,7 +69,7 @@ void remove_collapsed(PrmMesh& prm, const std::vector<uint8_t>& dead_vertex, con
 }  // namespace
 
 QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* input, const AabbTree* tree,
-                                                     double move_bound) {
+                                                     double move_bound, const std::vector<uint32_t>* centroid_faces) {
   QuantizedSeparationStats st;
   Mesh& m = prm.mesh;
   const QuantFrame& frame = prm.frame;
@@ -165,10 +165,15 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* i
   // applies it to the decoded stream), computed when first needed and again after a corner moves.
   std::vector<std::array<Vec3, 2>> input_normal(input && tree ? nf : 0);
   std::vector<uint8_t> input_normal_known(input_normal.size(), 0);
-  auto input_normal_near = [&](const Vec3& x) {
-    const Tri& s = input->triangles[tree->closest(x).face];
+  auto input_normal_of = [&](uint32_t face) {
+    const Tri& s = input->triangles[face];
     return triangle_normal_area2(input->positions[s[0]], input->positions[s[1]], input->positions[s[2]]);
   };
+  auto input_normal_near = [&](const Vec3& x) { return input_normal_of(tree->closest(x).face); };
+  // The faces nearest the centroids as given, while no corner has moved (the first pass, unless the boundary's
+  // rounding above moved one).
+  const std::vector<uint32_t>* known_nearest =
+      centroid_faces && centroid_faces->size() == nf && st.boundary_rounded == 0 ? centroid_faces : nullptr;
   auto dequantized_centroid = [&](const Q3 c[3]) {
     Vec3 x{0, 0, 0};
     for (int i = 0; i < 3; ++i)
@@ -180,7 +185,9 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* i
     if (!input_normal_known[f]) {
       const Tri& t = m.triangles[f];
       const Q3 c[3] = {q[t[0]], q[t[1]], q[t[2]]};
-      input_normal[f] = {input_normal_near((m.positions[t[0]] + m.positions[t[1]] + m.positions[t[2]]) * (1.0 / 3.0)),
+      const uint32_t known = known_nearest ? (*known_nearest)[f] : AabbTree::kNoFace;
+      const Vec3 centroid = (m.positions[t[0]] + m.positions[t[1]] + m.positions[t[2]]) * (1.0 / 3.0);
+      input_normal[f] = {known != AabbTree::kNoFace ? input_normal_of(known) : input_normal_near(centroid),
                          input_normal_near(dequantized_centroid(c))};
       input_normal_known[f] = 1;
     }
@@ -206,6 +213,7 @@ QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* i
     st.degenerate_faces += is_zero(normal(f));
     st.rounding_turned += turned_by_rounding(f);
   }
+  known_nearest = nullptr;
   for (size_t v = 0; v < nv; ++v) st.coincident_vertices += at[q[v]] > 1;
   if (st.degenerate_faces == 0 && st.rounding_turned == 0 && st.coincident_vertices == 0) return st;
   std::vector<std::vector<uint32_t>> around(nv);  // faces around each vertex (collapses change them)

@@ -45,7 +45,10 @@ struct QuantizedSeparationStats {
 // the polyline; a boundary vertex is never collapsed away.
 // move_bound > 0 (the local refinement's bound, --local-refinement): while the input's side is kept, no move takes a
 // vertex farther than that from the input (unless it already is); the edge collapses and the last pass still may.
+// centroid_faces: per face, the input face nearest its centroid as given (AabbTree::closest's), or AabbTree::kNoFace
+// (HeightFitOptions::centroid_faces); the first pass takes it instead of searching.
 QuantizedSeparationStats separate_quantized_vertices(PrmMesh& prm, const Mesh* input = nullptr,
-                                                     const AabbTree* tree = nullptr, double move_bound = 0);
+                                                     const AabbTree* tree = nullptr, double move_bound = 0,
+                                                     const std::vector<uint32_t>* centroid_faces = nullptr);
 
 }  // namespace prm::remesh

@@ -66,7 +66,9 @@ std::vector<Vec3> unit_face_normals(const Mesh& m) {
 
 // resample_and_merge's last steps on a merged PRM with fitted heights: the local refinement (max_deviation) and the
 // separation of quantized vertices.
-void finish(PrmMesh& prm, const Mesh& input, const AabbTree& tree, const ResampleOptions& options) {
+// centroid_faces: the fit's (HeightFitOptions::centroid_faces) at prm's positions, or null.
+void finish(PrmMesh& prm, const Mesh& input, const AabbTree& tree, const ResampleOptions& options,
+            const std::vector<uint32_t>* centroid_faces = nullptr) {
   ResampleStats& st = prm.stats;
   if (options.max_deviation > 0) {
     DeviationRefinementOptions dro;
@@ -98,7 +100,8 @@ void finish(PrmMesh& prm, const Mesh& input, const AabbTree& tree, const Resampl
   // Last, since it places vertices exactly on quantization points: the stream must hold this mesh, not one with
   // collapsed triangles.
   const QuantizedSeparationStats qs = separate_quantized_vertices(
-      prm, &input, &tree, options.max_deviation > 0 && options.refine_notches ? options.max_deviation : 0);
+      prm, &input, &tree, options.max_deviation > 0 && options.refine_notches ? options.max_deviation : 0,
+      options.max_deviation > 0 ? nullptr : centroid_faces);  // the refinement moves and adds vertices
   st.quantized_degenerate = qs.degenerate_faces;
   st.quantized_rounding_turned = qs.rounding_turned;
   st.quantized_coincident = qs.coincident_vertices;
@@ -264,15 +267,18 @@ PrmMesh resample_and_merge(const LayoutInput& layout, const ResampleOptions& opt
   }
   st.vertices = nv;
   st.faces = nf;
+  std::vector<uint32_t> centroid_faces;  // the fit's, for the separation's first pass
   if (options.fit_heights) {
     HeightFitOptions ho;
     ho.reuse_faces = options.height_fit_reuse_faces;
+    ho.closest_faces = &merged.sample_face;
+    ho.centroid_faces = &centroid_faces;
     const HeightFitStats hs = fit_heights(prm, input, tree, ho);
     st.heights_moved = hs.moved;
     st.height_moves_reverted = hs.reverted;
   }
   if (options.fitted != nullptr) *options.fitted = prm;
-  finish(prm, input, tree, options);
+  finish(prm, input, tree, options, &centroid_faces);
   store_prm_labels(prm);
   return prm;
 }

@@ -115,15 +115,27 @@ void SeamOptimizer::compact() {
     vertices.push_back(mv(v));
   }
   std::vector<std::array<int32_t, 3>> faces;
+  std::vector<uint32_t> sample_face;
   for (auto f : mesh_.faces()) {
     if (mesh_.status(f).deleted()) continue;
     std::array<int32_t, 3> t{};
+    std::array<int, 3> corners{};
     int k = 0;
-    for (auto v : mesh_.fv_range(f)) t[static_cast<size_t>(k++)] = remap[static_cast<size_t>(v.idx())];
+    for (auto v : mesh_.fv_range(f)) {
+      corners[static_cast<size_t>(k)] = v.idx();
+      t[static_cast<size_t>(k++)] = remap[static_cast<size_t>(v.idx())];
+    }
     faces.push_back(t);
+    if (unit_faces_.empty()) continue;
+    // The same corners in the same order: the same sample points (the flips move no vertex).
+    const size_t i = static_cast<size_t>(f.idx());
+    const bool same = unit_corners_[i] == corners;
+    for (size_t s = 0; s < static_cast<size_t>(kTriangleErrorSamples); ++s)
+      sample_face.push_back(same ? unit_faces_[kTriangleErrorSamples * i + s] : AabbTree::kNoFace);
   }
   m_.vertices = std::move(vertices);
   m_.faces = std::move(faces);
+  m_.sample_face = std::move(sample_face);
   m_.face_relief.assign(m_.faces.size(), -1);
 }
 

@@ -3,6 +3,7 @@
 // it implements. run() (seam_optimization.cpp) calls them in order.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -88,8 +89,9 @@ class SeamOptimizer {
   // error_flips.cpp (ours): irregular edges flipped where that brings the surface closer to the input.
   // `hint`: the last answer of a nearby query (AabbTree's hint), updated; the result does not depend on it.
   // With `stop` finite, returns early, a value whose sum with `base` is >= stop, once the full error's would be.
+  // `faces`: when given, set to the input triangle closest to each sample taken (kTriangleSamples order).
   double triangle_error(const Vec3& a, const Vec3& b, const Vec3& c, AabbTree::Hit& hint, double base = 0,
-                        double stop = HUGE_VAL) const;
+                        double stop = HUGE_VAL, uint32_t* faces = nullptr) const;
   bool try_error_flip(EH e, double error_unit, Quad& q);
   bool grid_face(HH h) const;
   bool touches_grid_face(EH e) const;
@@ -118,6 +120,11 @@ class SeamOptimizer {
   std::vector<FaceOkMemo> face_ok_memo_;
   bool remember_collapses_ = false;
   TriangleAnswerMemo collapse_memo_;
+  // The error flips' mean triangle error: per face index, the closest input faces of its samples
+  // (kTriangleErrorSamples a face) and its corners in the order sampled; compact() keeps those of the faces the
+  // flips left as they were (MergedMesh::sample_face).
+  std::vector<uint32_t> unit_faces_;
+  std::vector<std::array<int, 3>> unit_corners_;
 };
 
 }  // namespace prm::remesh

@@ -3,6 +3,9 @@
 #include <map>
 #include <tuple>
 
+#include "../src/height_fitting.h"
+#include "../src/triangle_samples.h"
+#include "prm/aabb_tree.h"
 #include "prm/error.h"
 #include "prm/remesh/lattice.h"
 #include "prm/remesh/reliefs.h"
@@ -14,7 +17,7 @@ namespace prm::remesh {
 namespace {
 
 // Resampling on the naive layout (each face to its closest axis): many small reliefs, a hard case for merging.
-PrmMesh run(const Mesh& m, int64_t grid) {
+PrmMesh run(const Mesh& m, int64_t grid, bool fit_heights = true) {
   ReliefOptions ro;
   ro.naive = true;
   const ReliefLayout layout = build_reliefs(m, ro);
@@ -28,6 +31,7 @@ PrmMesh run(const Mesh& m, int64_t grid) {
   ResampleOptions o;
   o.frame = frame_of_mesh(m, 12);
   o.grid = grid;
+  o.fit_heights = fit_heights;
   return resample_and_merge(in, o);
 }
 
@@ -129,6 +133,52 @@ TEST(Resample, SelfOverlappingReliefWorks) {
   std::printf("ramp: V %zu F %zu regular %.1f%% overlapping lattice points %d\n", prm.stats.vertices, prm.stats.faces,
               100.0 * prm.stats.regular_faces / prm.stats.faces, overlaps);
   EXPECT_GT(static_cast<double>(prm.stats.regular_faces) / static_cast<double>(prm.stats.faces), 0.7);
+}
+
+
+// HeightFitOptions::closest_faces (the seam error flips' closest input faces of each face's samples): the first
+// iteration takes its points on those faces instead of searching, and the heights are the searched ones, bit for bit.
+// And the faces nearest the centroids it hands on (HeightFitOptions::centroid_faces) are the search's.
+TEST(HeightFit, ClosestFacesGiveTheSearchedHeights) {
+  const Mesh sphere = test::icosphere(5, 1.0, 0.05);
+  const PrmMesh merged = run(sphere, 40, false);
+  const AabbTree tree(sphere);
+  std::vector<uint32_t> faces;
+  for (const Tri& t : merged.mesh.triangles)
+    for (const auto& w : kTriangleSamples) {
+      const Vec3& a = merged.mesh.positions[t[0]];
+      const Vec3& b = merged.mesh.positions[t[1]];
+      const Vec3& c = merged.mesh.positions[t[2]];
+      faces.push_back(faces.size() % 5 == 3 ? AabbTree::kNoFace : tree.closest(a * w[0] + b * w[1] + c * w[2]).face);
+    }
+  PrmMesh searched = merged, given = merged;
+  const HeightFitStats s1 = fit_heights(searched, sphere, tree, HeightFitOptions());
+  HeightFitOptions with_faces;
+  with_faces.closest_faces = &faces;
+  std::vector<uint32_t> centroid_faces;
+  with_faces.centroid_faces = &centroid_faces;
+  const HeightFitStats s2 = fit_heights(given, sphere, tree, with_faces);
+  // HeightFitOptions::centroid_faces: where known, the search's answer at the returned positions.
+  ASSERT_EQ(centroid_faces.size(), given.mesh.triangles.size());
+  size_t known = 0, wrong = 0;
+  for (size_t f = 0; f < centroid_faces.size(); ++f) {
+    if (centroid_faces[f] == AabbTree::kNoFace) continue;
+    ++known;
+    const Tri& t = given.mesh.triangles[f];
+    const std::vector<Vec3>& x = given.mesh.positions;
+    const Vec3 centroid = (x[t[0]] + x[t[1]] + x[t[2]]) * (1.0 / 3.0);
+    wrong += tree.closest(centroid).face != centroid_faces[f];
+  }
+  EXPECT_GT(known, given.mesh.triangles.size() / 2);
+  EXPECT_EQ(wrong, 0u);
+  EXPECT_GT(s1.moved, 100u);
+  EXPECT_EQ(s1.moved, s2.moved);
+  EXPECT_EQ(s1.reverted, s2.reverted);
+  ASSERT_EQ(searched.mesh.positions.size(), given.mesh.positions.size());
+  size_t differ = 0;
+  for (size_t v = 0; v < given.mesh.positions.size(); ++v)
+    differ += searched.mesh.positions[v] != given.mesh.positions[v];
+  EXPECT_EQ(differ, 0u);
 }
 
 }  // namespace

@@ -3,6 +3,8 @@
 // fitting, the quantized separation, the local refinement) and the decoded stream's check (pipeline stream_check).
 #pragma once
 
+#include <cstdint>
+
 #include "prm/aabb_tree.h"
 #include "prm/mesh.h"
 #include "prm/vec3.h"
@@ -10,9 +12,11 @@
 namespace prm {
 
 // normal: the triangle's (any length, e.g. triangle_normal_area2); centroid: its centroid. tree: surface's tree.
-// True when the surface has no face to compare with.
-inline bool faces_surface(const Vec3& normal, const Vec3& centroid, const Mesh& surface, const AabbTree& tree) {
+// True when the surface has no face to compare with. `nearest`: when given, set to tree.closest(centroid).face.
+inline bool faces_surface(const Vec3& normal, const Vec3& centroid, const Mesh& surface, const AabbTree& tree,
+                          uint32_t* nearest = nullptr) {
   const AabbTree::Hit hit = tree.closest(centroid);
+  if (nearest) *nearest = hit.face;
   if (!hit.found()) return true;
   const Tri& s = surface.triangles[hit.face];
   return dot(normal, triangle_normal_area2(surface.positions[s[0]], surface.positions[s[1]], surface.positions[s[2]])) > 0;
