@@ -136,6 +136,14 @@ size_t sample_count(const MetroOptions& o, const Mesh& a, const Mesh& b) {
   return o.max_samples > 0 ? std::min(n, o.max_samples) : n;
 }
 
+}  // namespace
+
+SamplingOptions metro_sampling(const MetroOptions& o, const Mesh& a, const Mesh& b) {
+  return sampling_options(o, sample_count(o, a, b));
+}
+
+namespace {
+
 DistanceReport combine(const OneSidedDistance& ab, const OneSidedDistance& ba, double diagonal) {
   DistanceReport r;
   r.a_to_b = ab;
@@ -173,7 +181,7 @@ OneSidedDistance distance_to_surface(const std::vector<Vec3>& points, const Aabb
 DistanceReport metro_distance(const Mesh& a, const Mesh& b, const MetroOptions& options) {
   require_surface(a, "A");
   require_surface(b, "B");
-  const SamplingOptions so = sampling_options(options, sample_count(options, a, b));
+  const SamplingOptions so = metro_sampling(options, a, b);
   // Each preparation is parallel inside; running them one after the other keeps all cores busy without nesting.
   const AabbTree tree_a(a), tree_b(b);
   const SamplePlan samples_a(a, so), samples_b(b, so);
@@ -189,7 +197,7 @@ std::vector<DeviationSite> worst_deviations(const Mesh& a, const Mesh& b, size_t
                                            const MetroOptions& options) {
   require_surface(a, "A");
   require_surface(b, "B");
-  const SamplingOptions so = sampling_options(options, sample_count(options, a, b));
+  const SamplingOptions so = metro_sampling(options, a, b);
   const AabbTree tree_a(a), tree_b(b);
   const SurfaceSamples samples_a = sample_surface(a, so), samples_b = sample_surface(b, so);
   std::vector<double> da, db;

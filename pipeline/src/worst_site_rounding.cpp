@@ -85,18 +85,7 @@ size_t round_worst_sites(remesh::PrmMesh& prm, const codec::DecodedMesh& decoded
   const double grid = static_cast<double>(prm.lattice.A) * prm.frame.step;
   // The places: the decoded mesh's samples as the reference's Metro takes them (its pr>in samples, bit for bit)
   // farther than kSiteShare x the aim, farthest first, at most kSites, each a grid size from a farther one.
-  const MetroOptions& mo = reference.options();
-  SamplingOptions so;
-  so.samples = mo.samples > 0 ? mo.samples
-                              : static_cast<size_t>(mo.samples_per_face *
-                                                    static_cast<double>(std::max(reference.mesh().triangles.size(),
-                                                                                 decoded_mesh.triangles.size())));
-  if (mo.samples == 0 && mo.max_samples > 0) so.samples = std::min(so.samples, mo.max_samples);
-  so.budget = mo.budget;
-  so.vertices = mo.sample_vertices;
-  so.edges = mo.sample_edges;
-  so.faces = mo.sample_faces;
-  so.seed = mo.seed;
+  const SamplingOptions so = metro_sampling(reference.options(), reference.mesh(), decoded_mesh);
   const SurfaceSamples samples = sample_surface(decoded_mesh, so);
   std::vector<double> distance;
   const std::vector<size_t> far = farther(samples.points, reference.tree(), kSiteShare * aim, kSiteShare * aim, distance);
@@ -134,9 +123,7 @@ size_t round_worst_sites(remesh::PrmMesh& prm, const codec::DecodedMesh& decoded
   if (sites.empty()) return 0;
   Mesh m = decoded_mesh;
   const size_t nv = m.positions.size();
-  std::vector<std::vector<uint32_t>> vertex_faces(nv);
-  for (uint32_t f = 0; f < m.triangles.size(); ++f)
-    for (uint32_t v : m.triangles[f]) vertex_faces[v].push_back(f);
+  const std::vector<std::vector<uint32_t>> vertex_faces = faces_around_vertices(m);
   const AabbTree& tree = reference.tree();
   // The quantized points' range per axis (a move stays inside the decoded mesh's box).
   std::array<int64_t, 3> lo{INT64_MAX, INT64_MAX, INT64_MAX}, hi{INT64_MIN, INT64_MIN, INT64_MIN};

@@ -69,6 +69,10 @@ struct DistanceReport {
 // missing vertex, or a used vertex has a non-finite coordinate.
 DistanceReport metro_distance(const Mesh& a, const Mesh& b, const MetroOptions& options = {});
 
+// How metro_distance (and MetroReference::compare) samples each of a and b: the sample count for the pair and the
+// options' budget, kinds and seed.
+SamplingOptions metro_sampling(const MetroOptions& options, const Mesh& a, const Mesh& b);
+
 // Distances from sample points to the surface in `surface` (the building block of metro_distance). Statistics are
 // summed in a fixed order, so they do not depend on the thread count. If per_sample is given, it receives each
 // point's distance. The counts and area of the result are copied from `samples`.
