@@ -280,6 +280,14 @@ Remeshed remesh_at(const SearchContext& ctx, const PackOptions& options, int bit
   return rm;
 }
 
+// Is some vertex of m farther than `limit` (a fraction of the diagonal) from the reference's mesh? Then its Metro max
+// passes `limit` too, when the reference samples the vertices (vertex_distance_max is at most that max): a stream can
+// be refused for its max without its Metro run (hcpu5).
+bool vertices_pass(const MetroReference& reference, const Mesh& m, double limit) {
+  return reference.options().sample_vertices && reference.diagonal() > 0 &&
+         vertex_distance_max(m, reference.tree()) / reference.diagonal() > limit;
+}
+
 // The heights of a remeshed attempt: the lambda bisection (its sparse estimates scaled by rm.sparse_bias), then the
 // check at full density. `measured`: false when the chosen stream, measured at full density, misses what the
 // search's sparser samples promised (the caller repeats at full density).
@@ -378,7 +386,6 @@ PackResult finish_at(const SearchContext& ctx, const PackOptions& options, Remes
     // RMS target (2, not 1) matters only to the lambda above it, tried once more below: its decoded mesh is kept here
     // and measured only then (hcpu5: on the venus at 1.3e-4 the first lambda and that retry, two Metro runs).
     const MetroReference& measured_by = lambda_full ? ctx.full : ctx.search;
-    const bool vertex_bound = guard_aim > 0 && measured_by.options().sample_vertices;
     std::optional<Mesh> unmeasured;
     // Lambda j's stream tried: kept when it meets everything and is smaller. 0: it met; 1: refused only for passing
     // guard_aim; 2: refused otherwise; 3: 1 or 2, its vertices past guard_aim (`unmeasured`: its mesh).
@@ -401,8 +408,7 @@ PackResult finish_at(const SearchContext& ctx, const PackOptions& options, Remes
       bool over_aim = false;
       const auto measure_unless_refused = [&](const Mesh& m) {
         if (zero_area > 0 || coincident > base_coincident) return remesh::ErrorEstimate{HUGE_VAL, HUGE_VAL};
-        const double diagonal = measured_by.diagonal();
-        if (vertex_bound && diagonal > 0 && vertex_distance_max(m, measured_by.tree()) / diagonal > guard_aim) {
+        if (guard_aim > 0 && vertices_pass(measured_by, m, guard_aim)) {
           over_aim = true;
           unmeasured = m;
           return remesh::ErrorEstimate{0, HUGE_VAL};
@@ -527,9 +533,7 @@ PackResult finish_at(const SearchContext& ctx, const PackOptions& options, Remes
       size_t za = 0;
       auto full = [&](const Mesh& m) {
         if (!rounded_stream.empty() && *stream == rounded_stream) return rounded_error;
-        if (refuse_over > 0 && ctx.full.options().sample_vertices && ctx.full.diagonal() > 0 &&
-            vertex_distance_max(m, ctx.full.tree()) / ctx.full.diagonal() > refuse_over)
-          return remesh::ErrorEstimate{HUGE_VAL, HUGE_VAL};
+        if (refuse_over > 0 && vertices_pass(ctx.full, m, refuse_over)) return remesh::ErrorEstimate{HUGE_VAL, HUGE_VAL};
         return measure_with(ctx.full, m);
       };
       const remesh::ErrorEstimate e = encode_facing(o, report, stream, full, &za, nullptr);
