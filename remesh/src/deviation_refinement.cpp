@@ -900,17 +900,22 @@ void for_each_sharp_midpoint(const Mesh& m, const std::vector<std::vector<uint32
   }
 }
 
-// The worst squared distance to the input of triangle (a, b, c)'s probes on its grid_divisions grid and on its
-// fine_grid_divisions grid (the two the refinement measures a face on near the bound).
+// Triangle (a, b, c)'s probes on its grid_divisions grid, then on its fine_grid_divisions grid (the two the
+// refinement measures a face on near the bound).
+template <class Visit>
+void for_each_fine_probe(const Vec3& a, const Vec3& b, const Vec3& c, double bound, const Visit& visit) {
+  for_each_grid_point(a, b, c, grid_divisions(a, b, c, bound), visit);
+  for_each_grid_point(a, b, c, fine_grid_divisions(a, b, c, bound), visit);
+}
+
+// The worst squared distance to the input of triangle (a, b, c)'s probes (for_each_fine_probe).
 double fine_probe_deviation2(const Vec3& a, const Vec3& b, const Vec3& c, const AabbTree& input_tree, double bound) {
   double worst = 0;
   AabbTree::Hit hint;
-  const auto visit = [&](const Vec3& x) {
+  for_each_fine_probe(a, b, c, bound, [&](const Vec3& x) {
     input_tree.closest(x, hint);
     worst = std::max(worst, hint.distance2);
-  };
-  for_each_grid_point(a, b, c, grid_divisions(a, b, c, bound), visit);
-  for_each_grid_point(a, b, c, fine_grid_divisions(a, b, c, bound), visit);
+  });
   return worst;
 }
 
@@ -1627,9 +1632,8 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
       if (sharp && f < groove_moved.size() && groove_moved[f]) {
         const Tri& t = m.triangles[f];
         const Vec3 &a = m.positions[t[0]], &b = m.positions[t[1]], &c = m.positions[t[2]];
-        const auto visit = [&](const Vec3& x) { probe_worst(input_tree, x, true, hint, worst, at); };
-        for_each_grid_point(a, b, c, grid_divisions(a, b, c, options.max_deviation), visit);
-        for_each_grid_point(a, b, c, fine_grid_divisions(a, b, c, options.max_deviation), visit);
+        for_each_fine_probe(a, b, c, options.max_deviation,
+                            [&](const Vec3& x) { probe_worst(input_tree, x, true, hint, worst, at); });
       }
       if (worst.found() && worst.distance2 > bound2) far.push_back({f, at, worst.point, worst.distance2, kMeshPoint});
     }
