@@ -57,18 +57,36 @@ HeightFitStats fit_heights(PrmMesh& prm, const Mesh& input, const AabbTree& tree
   // kept (HeightFitOptions::centroid_faces) until a corner moves.
   std::vector<uint32_t>* nearest = options.centroid_faces;
   if (nearest) nearest->assign(nf, AabbTree::kNoFace);
+  // Per face and sample, the input triangle of its closest point in the last iteration (kNoFace: none yet). The
+  // sample has moved by the heights' change only since: that triangle's distance is the next search's start bound
+  // (the venus at 1.3e-4: the second iteration's searches 0.28 -> 0.21 s), or with HeightFitOptions::reuse_faces
+  // the answer when the sample projects well inside it.
+  std::vector<uint32_t> sample_face(std::size(kSamples) * nf, AabbTree::kNoFace);
   auto flipped = [&](uint32_t f) {
     const Tri& t = m.triangles[f];
     const Vec3 n2 = triangle_normal_area2(m.positions[t[0]], m.positions[t[1]], m.positions[t[2]]);
     if (!(norm2(n2) > 0)) return true;
-    return !faces_surface(n2, (m.positions[t[0]] + m.positions[t[1]] + m.positions[t[2]]) * (1.0 / 3.0), input, tree,
-                          nearest ? &(*nearest)[f] : nullptr);
+    const Vec3 centroid = (m.positions[t[0]] + m.positions[t[1]] + m.positions[t[2]]) * (1.0 / 3.0);
+    // HeightFitOptions::reuse_faces: the triangle of the face's centroid sample (kSamples[0]) when the centroid
+    // projects well inside it, as the samples take it.
+    const uint32_t known = options.reuse_faces ? sample_face[std::size(kSamples) * f] : AabbTree::kNoFace;
+    if (known != AabbTree::kNoFace && tree.well_inside(centroid, known)) {
+      if (nearest) (*nearest)[f] = known;
+      const Tri& s = input.triangles[known];
+      return !(dot(n2, triangle_normal_area2(input.positions[s[0]], input.positions[s[1]], input.positions[s[2]])) > 0);
+    }
+    return !faces_surface(n2, centroid, input, tree, nearest ? &(*nearest)[f] : nullptr);
   };
   auto forget_nearest = [&](uint32_t f) {
     if (nearest) (*nearest)[f] = AabbTree::kNoFace;
   };
+  // With reuse_faces, after the first iteration's samples (at these positions still), whose centroids' triangles it
+  // takes.
   std::vector<uint8_t> was_flipped(nf);
-  tbb::parallel_for(size_t{0}, nf, [&](size_t f) { was_flipped[f] = flipped(static_cast<uint32_t>(f)); });
+  const auto find_flipped = [&] {
+    tbb::parallel_for(size_t{0}, nf, [&](size_t f) { was_flipped[f] = flipped(static_cast<uint32_t>(f)); });
+  };
+  if (!options.reuse_faces) find_flipped();
   const std::vector<std::vector<uint32_t>> vertex_faces = faces_around_vertices(m);
   const std::vector<Vec3> start = m.positions;
   std::vector<double> shift(nv, 0.0);  // total move along the vertex's axis so far
@@ -77,11 +95,6 @@ HeightFitStats fit_heights(PrmMesh& prm, const Mesh& input, const AabbTree& tree
   // flipped() of a face at the current positions, while they last (kFlipUnknown: not evaluated or a corner moved).
   enum : uint8_t { kFlipUnknown, kFlipUnknownMark, kFlipNo, kFlipYes };
   std::vector<uint8_t> flip_state(nf, kFlipUnknown);
-  // Per face and sample, the input triangle of its closest point in the last iteration (kNoFace: none yet). The
-  // sample has moved by the heights' change only since: that triangle's distance is the next search's start bound
-  // (the venus at 1.3e-4: the second iteration's searches 0.28 -> 0.21 s), or with HeightFitOptions::reuse_faces
-  // the answer when the sample projects well inside it.
-  std::vector<uint32_t> sample_face(std::size(kSamples) * nf, AabbTree::kNoFace);
   // HeightFitOptions::closest_faces: the first iteration's answers where known (the venus at 1.3e-4: its searches
   // 0.285 -> 0.039 s at the first grid, 0.19 -> 0.026 s at the second).
   const bool answers =
@@ -139,6 +152,7 @@ HeightFitStats fit_heights(PrmMesh& prm, const Mesh& input, const AabbTree& tree
       AabbTree::Hit hint;
       for (size_t f = c * kFaceChunk, end = std::min(nf, f + kFaceChunk); f < end; ++f) fit_face(f, hint);
     });
+    if (it == 0 && options.reuse_faces) find_flipped();
     std::vector<double> num(nv, 0.0), den(nv, 0.0);
     for (size_t f = 0; f < nf; ++f)
       for (int k = 0; k < 3; ++k) {
