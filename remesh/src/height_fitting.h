@@ -19,6 +19,8 @@ struct HeightFitOptions {
   // A sample's closest point is taken on a known input triangle, without a tree query, when the sample projects well
   // inside it (AabbTree::well_inside): the triangle the same sample had in the previous iteration, else the previous
   // sample's. Nearly always the same point; pack's effort 0 (on the venus, the samples' query time 0.48 -> 0.32 s).
+  // The flip tests take the triangle of a face's centroid sample so too (the first ones after the first iteration's
+  // samples, at the same positions): the same effort-0 streams (bench/README.md "pack effort", nineteenth round).
   bool reuse_faces = false;
   // Without reuse_faces: per face of the PRM, kTriangleErrorSamples entries, the input triangle closest to each of
   // the face's points (triangle_samples.h) at the positions given, or AabbTree::kNoFace (MergedMesh::sample_face).

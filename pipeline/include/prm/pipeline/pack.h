@@ -206,7 +206,7 @@ struct EffortPlan {
   // The least-squares heights take a sample's closest point on an input triangle already known for it when the
   // sample projects well inside it (remesh::RemeshOptions::height_fit_reuse_faces, AabbTree::well_inside) instead
   // of a closest-point query: the venus at effort 0 -7% CPU; horse -1 byte, venus the same size, feline and
-  // bunny_zipper the same streams (bench/README.md "pack effort", fifteenth round).
+  // bunny_zipper the same streams (bench/README.md "pack effort", fifteenth round). Its flip tests too (nineteenth).
   bool height_fit_reuse_faces = false;
   // PackOptions::LocalRefinement::automatic refines: everywhere but at effort 0, whose budget (issue 21: 3 s CPU
   // for a 50k-vertex model) the refinement alone would use up (3-5 s on the paper's models, bench/README.md
