@@ -142,8 +142,7 @@ remesh::ErrorFunction error_function(const SearchContext& ctx, Measuring& s) {
       remesh::ErrorEstimate e = measure_with(reference, m);
       if (&reference == &ctx.full) return e;
       const bool max_in_band = s.max_error > 0 && e.max >= kSparseBand[0] * s.max_error;
-      const double band_high = ctx.plan.sparse_band_high > 0 ? ctx.plan.sparse_band_high : kSparseBand[1];
-      if ((e.rms < kSparseBand[0] * s.target_error || e.rms > band_high * s.target_error) && !max_in_band)
+      if ((e.rms < kSparseBand[0] * s.target_error || e.rms > kSparseBand[1] * s.target_error) && !max_in_band)
         return e;
       // EffortPlan::decode_in_band: the stream encoded and decoded, so that its check can reuse this measurement.
       const bool encode = !decoded && (ctx.plan.decode_in_band || s.decode_in_band);
@@ -674,14 +673,9 @@ EffortPlan effort_plan(int effort) {
   // error over every 16th face), measures its lambda round at full density (the check reuses it) and skips that
   // round when the rounded heights are at 0.97 of the target or more: 15-20% fewer CPU samples on the venus and the
   // feline, streams within -0.1..+0.8% on the paper's models (bench/README.md "pack effort", eleventh round).
-  // Effort 0's search estimates at 1 Metro sample per face (2 before) and measures again at full density the estimates
-  // up to 1.15 of the target (1.08 above), since the sparser samples over-weigh the vertices more: the same streams
-  // on the paper's four models at 1.3e-4 and 2e-4, the same in-band measurements (bench/README.md "pack effort",
-  // nineteenth round).
   switch (effort) {
     case 0:
-      p.steps = 1; p.search_samples_per_face = 1; p.sparse_band_high = 1.15; p.lambda_rounds = 1;
-      p.grid_tolerance = 0.15; p.accept_error = 0;
+      p.steps = 1; p.search_samples_per_face = 2; p.lambda_rounds = 1; p.grid_tolerance = 0.15; p.accept_error = 0;
       p.decode_in_band = true; p.error_samples = 1; p.error_unit_stride = 16; p.lambda_below = 0.97;
       p.first_grid_gate = 0.9;
       p.lambda_full_density = true;

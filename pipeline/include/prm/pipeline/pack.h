@@ -149,9 +149,6 @@ struct EffortPlan {
   bool exhaustive = false;        // the bit-depth scan and kStepScales (otherwise: steps around the predicted one)
   int steps = 1;                  // without `exhaustive`: how many steps (eighths of an octave) to try
   double search_samples_per_face = 10;  // Metro density while searching (MetroOptions::samples_per_face)
-  // The upper end of the band of sparse estimates measured again at full density (pack.cpp's kSparseBand; 0: its
-  // 1.08): sparser samples over-weigh the vertices more.
-  double sparse_band_high = 0;
   int lambda_rounds = 5;          // bisection rounds over kHeightLambdas (5 finds the last one that meets)
   double grid_tolerance = 0.02;   // remesh::RemeshOptions::grid_tolerance
   double accept_error = 1.0;      // remesh::RemeshOptions::accept_error
