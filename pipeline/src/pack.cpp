@@ -110,6 +110,8 @@ struct Remeshed {
   bool error_at_full_density = false;
   // remesh_at's error function's state, kept for a deferred refinement (RemeshOptions::defer_refinement).
   std::shared_ptr<Measuring> measuring;
+  // round_worst_sites' reach at in>pr places (kAloneMissedReach where the search has no other attempt to keep).
+  int missed_reach = 1;
 };
 
 // remesh_at's measurements: the search's grids, then those of its refinement (deferred or not).
@@ -490,7 +492,7 @@ PackResult finish_at(const SearchContext& ctx, const PackOptions& options, Remes
     const size_t base_coincident = count_coincident_vertices(decoded.value);
     const double aim = kDefaultMaxErrorPerTarget * options.target_error * ctx.full.diagonal();
     if (round_worst_sites(out.remesh.prm, decoded.value, to_mesh(decoded.value), out.report.vertex_order, ctx.full,
-                          aim, out.remesh.error.max * ctx.full.diagonal(), mask) > 0) {
+                          aim, out.remesh.error.max * ctx.full.diagonal(), mask, rm.missed_reach) > 0) {
       codec::PrmOptions o = out.codec_options;
       o.rounded_heights = o.height_lambda > 0 ? mask.data() : nullptr;
       codec::EncodeReport report;
@@ -1058,6 +1060,7 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
       const auto t1 = std::chrono::steady_clock::now();
       best_unrefined_bytes = best_remeshed->out.stream.size();
       refine_attempt(*best_remeshed);
+      if (finished_others.empty() && remeshed_others.empty()) best_remeshed->missed_reach = kAloneMissedReach;
       out = finish_at(ctx, options, std::move(*best_remeshed), &measured);
       if (!measured) {
         // One step (as pack_one would): again from the grid its search started from; several: from the best grid.
