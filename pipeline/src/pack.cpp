@@ -110,6 +110,8 @@ struct Remeshed {
   bool error_at_full_density = false;
   // remesh_at's error function's state, kept for a deferred refinement (RemeshOptions::defer_refinement).
   std::shared_ptr<Measuring> measuring;
+  // round_worst_sites' reach at in>pr places (kAloneMissedReach where the search has no other attempt to keep).
+  int missed_reach = 1;
 };
 
 // remesh_at's measurements: the search's grids, then those of its refinement (deferred or not).
@@ -479,18 +481,22 @@ PackResult finish_at(const SearchContext& ctx, const PackOptions& options, Remes
   // vertices' quantized points moved by a step where that brings them nearer (round_worst_sites), kept when the
   // stream then meets the target with a smaller max and turns no more triangles (h22t: the horse at 1.3e-4). Before
   // the heights' guard, which it spares a measurement of the rounded heights where it brings the max within the aim.
+  // A stream within kRoundMargin under the bound is rounded towards that margin (h22homer: refined_elephant at 2e-4,
+  // 7.998x, a pr>in place at 8.00x).
   const auto round_sites = [&] {
+    const double bound = kDefaultMaxErrorPerTarget * options.target_error;
+    const double aim_share = out.remesh.error.max > bound ? 1.0 : kRoundMargin;
     if (zero_area > 0 || !ctx.plan.local_refinement || options.max_error > 0 || !(options.target_error > 0) ||
-        out.remesh.error.max <= kDefaultMaxErrorPerTarget * options.target_error)
+        out.remesh.error.max <= aim_share * bound)
       return;
     const auto decoded = codec::decode(out.stream.data(), out.stream.size());
     if (!decoded.ok()) throw InputError("the encoder's stream does not decode (a codec bug): " + decoded.status.message);
     const std::vector<Vec3> positions = out.remesh.prm.mesh.positions;
     std::vector<uint8_t> mask = out.codec_options.rounded_heights ? out_held : std::vector<uint8_t>{};
     const size_t base_coincident = count_coincident_vertices(decoded.value);
-    const double aim = kDefaultMaxErrorPerTarget * options.target_error * ctx.full.diagonal();
+    const double aim = aim_share * bound * ctx.full.diagonal();
     if (round_worst_sites(out.remesh.prm, decoded.value, to_mesh(decoded.value), out.report.vertex_order, ctx.full,
-                          aim, out.remesh.error.max * ctx.full.diagonal(), mask) > 0) {
+                          aim, out.remesh.error.max * ctx.full.diagonal(), mask, rm.missed_reach) > 0) {
       codec::PrmOptions o = out.codec_options;
       o.rounded_heights = o.height_lambda > 0 ? mask.data() : nullptr;
       codec::EncodeReport report;
@@ -1058,6 +1064,7 @@ PackResult pack_prm(const Mesh& input, const PackOptions& options, const MetroRe
       const auto t1 = std::chrono::steady_clock::now();
       best_unrefined_bytes = best_remeshed->out.stream.size();
       refine_attempt(*best_remeshed);
+      if (finished_others.empty() && remeshed_others.empty()) best_remeshed->missed_reach = kAloneMissedReach;
       out = finish_at(ctx, options, std::move(*best_remeshed), &measured);
       if (!measured) {
         // One step (as pack_one would): again from the grid its search started from; several: from the best grid.

@@ -81,7 +81,7 @@ Vec3 normal_of(const Mesh& m, const Tri& t) {
 
 size_t round_worst_sites(remesh::PrmMesh& prm, const codec::DecodedMesh& decoded, const Mesh& decoded_mesh,
                          const std::vector<uint32_t>& vertex_order, const MetroReference& reference, double aim,
-                         double max, std::vector<uint8_t>& held) {
+                         double max, std::vector<uint8_t>& held, int missed_reach) {
   const double grid = static_cast<double>(prm.lattice.A) * prm.frame.step;
   // The places: the decoded mesh's samples as the reference's Metro takes them (its pr>in samples, bit for bit)
   // farther than kSiteShare x the aim, farthest first, at most kSites, each a grid size from a farther one.
@@ -200,9 +200,10 @@ size_t round_worst_sites(remesh::PrmMesh& prm, const codec::DecodedMesh& decoded
             steps.push_back(d);
           }
         } else {
-          for (int dx = -1; dx <= 1; ++dx)
-            for (int dy = -1; dy <= 1; ++dy)
-              for (int dz = -1; dz <= 1; ++dz)
+          const int r = site.missed.empty() ? 1 : std::max(1, missed_reach);
+          for (int dx = -r; dx <= r; ++dx)
+            for (int dy = -r; dy <= r; ++dy)
+              for (int dz = -r; dz <= r; ++dz)
                 if (dx != 0 || dy != 0 || dz != 0) steps.push_back({dx, dy, dz});
         }
         const std::vector<uint32_t>& faces = vertex_faces[v];
