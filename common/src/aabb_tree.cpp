@@ -545,9 +545,9 @@ void AabbTree::search(const Vec3& p, Hit& hit, double best, uint32_t skip) const
   search_if(p, hit, best, [skip](uint32_t k) { return k == skip; });
 }
 
-AabbTree::Hit AabbTree::closest_excluding(const Vec3& p, const std::vector<uint8_t>& excluded) const {
+AabbTree::Hit AabbTree::closest_excluding(const Vec3& p, const std::vector<uint8_t>& excluded, double bound2) const {
   Hit hit;
-  search_if(p, hit, HUGE_VAL, [&](uint32_t k) { return ids_[k] < excluded.size() && excluded[ids_[k]]; });
+  search_if(p, hit, bound2, [&](uint32_t k) { return ids_[k] < excluded.size() && excluded[ids_[k]]; });
   return hit;
 }
 

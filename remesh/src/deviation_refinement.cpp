@@ -1292,10 +1292,12 @@ class LaterRoundQueries {
     changed_tree_ = AabbTree(m.positions, changed);
   }
   AabbTree::Hit closest(const Vec3& x) const {
-    const AabbTree::Hit a = first_.closest_excluding(x, changed_);
     AabbTree::Hit b = changed_tree_.closest(x);
-    if (!b.found() || (a.found() && a.distance2 <= b.distance2)) return a;
-    b.face = ids_[b.face];
+    // The first tree's faces only as near as b or nearer (a search bounded from the start; on a tie, its face).
+    const AabbTree::Hit a =
+        first_.closest_excluding(x, changed_, b.found() ? std::nextafter(b.distance2, HUGE_VAL) : HUGE_VAL);
+    if (a.found()) return a;
+    if (b.found()) b.face = ids_[b.face];
     return b;
   }
   // As AabbTree::closest(x, hint).

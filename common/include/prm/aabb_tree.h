@@ -62,8 +62,9 @@ class AabbTree {
   Hit on_face(const Vec3& p, uint32_t face) const;
   void closest_reusing(const Vec3& p, Hit& hint) const;
   // The closest point of the triangles not flagged in `excluded` (indexed by the mesh's triangle; those past its end
-  // are not excluded), as closest(p) finds it among them.
-  Hit closest_excluding(const Vec3& p, const std::vector<uint8_t>& excluded) const;
+  // are not excluded), as closest(p, bound2) finds it among them.
+  Hit closest_excluding(const Vec3& p, const std::vector<uint8_t>& excluded,
+                        double bound2 = std::numeric_limits<double>::infinity()) const;
 
   size_t num_triangles() const { return triangles_.size(); }
   bool empty() const { return triangles_.empty(); }
