@@ -66,6 +66,11 @@ class AabbTree {
   Hit closest_excluding(const Vec3& p, const std::vector<uint8_t>& excluded,
                         double bound2 = std::numeric_limits<double>::infinity()) const;
 
+  // The same triangles (mesh.triangles as built) with their corners moved to mesh.positions: the boxes fitted again
+  // in place, the layout kept. Queries give the distances a new tree gives, bit for bit (on a tie, maybe another
+  // face). Throws prm::InputError if the triangles are not the tree's.
+  void refit(const Mesh& mesh);
+
   size_t num_triangles() const { return triangles_.size(); }
   bool empty() const { return triangles_.empty(); }
   // Box of all triangles: {min corner, max corner}; both zero for an empty tree.
