@@ -295,6 +295,52 @@ void AabbTree::build(const std::vector<Vec3>& positions, const std::vector<Tri>&
     if (point_of[v] != kNoFace) points_[point_of[v]] = positions[v];
 }
 
+void AabbTree::refit(const Mesh& mesh) {
+  if (mesh.triangles.size() != triangles_.size())
+    throw InputError("refit: the mesh's triangles are not the tree's");
+  for (size_t k = 0; k < triangles_.size(); ++k) {
+    const Tri& f = mesh.triangles[ids_[k]];
+    const Triangle& t = triangles_[k];
+    for (size_t c = 0; c < 3; ++c)
+      if (f[c] >= mesh.positions.size()) throw InputError("refit: the mesh's triangles are not the tree's");
+    points_[t.a] = mesh.positions[f[0]];
+    points_[t.b] = mesh.positions[f[1]];
+    points_[t.c] = mesh.positions[f[2]];
+    for (uint32_t q : {t.a, t.b, t.c})
+      if (!(std::isfinite(points_[q][0]) && std::isfinite(points_[q][1]) && std::isfinite(points_[q][2])))
+        throw InputError("refit: a corner is not finite");
+  }
+  // Children after their parents (order_depth_first): the pairs from the last, each side from its triangles (a leaf)
+  // or from its children's pair.
+  for (size_t i = pairs_.size(); i-- > 0;) {
+    NodePair& pair = pairs_[i];
+    for (size_t side = 0; side < 2; ++side) {
+      if (i == 0 && side == 1) continue;  // the root's unused slot
+      std::array<double, 3> lo, hi;
+      lo.fill(HUGE_VAL);
+      hi.fill(-HUGE_VAL);
+      if (pair.count[side] > 0) {
+        for (uint32_t k = pair.first[side], end = k + pair.count[side]; k < end; ++k)
+          for (uint32_t q : {triangles_[k].a, triangles_[k].b, triangles_[k].c})
+            for (size_t a = 0; a < 3; ++a) {
+              lo[a] = std::min(lo[a], points_[q][a]);
+              hi[a] = std::max(hi[a], points_[q][a]);
+            }
+        for (size_t a = 0; a < 3; ++a) {
+          pair.lo[a][side] = round_down(lo[a]);
+          pair.hi[a][side] = round_up(hi[a]);
+        }
+      } else {
+        const NodePair& children = pairs_[pair.first[side] / 2];
+        for (size_t a = 0; a < 3; ++a) {
+          pair.lo[a][side] = std::min(children.lo[a][0], children.lo[a][1]);
+          pair.hi[a][side] = std::max(children.hi[a][0], children.hi[a][1]);
+        }
+      }
+    }
+  }
+}
+
 void AabbTree::order_depth_first() {
   std::vector<NodePair> ordered;
   ordered.reserve(pairs_.size());
@@ -542,6 +588,17 @@ bool AabbTree::within(const Vec3& p, double bound2, Hit& hint) const {
 }
 
 void AabbTree::search(const Vec3& p, Hit& hit, double best, uint32_t skip) const {
+  search_if(p, hit, best, [skip](uint32_t k) { return k == skip; });
+}
+
+AabbTree::Hit AabbTree::closest_excluding(const Vec3& p, const std::vector<uint8_t>& excluded, double bound2) const {
+  Hit hit;
+  search_if(p, hit, bound2, [&](uint32_t k) { return ids_[k] < excluded.size() && excluded[ids_[k]]; });
+  return hit;
+}
+
+template <class Skip>
+void AabbTree::search_if(const Vec3& p, Hit& hit, double best, const Skip& skip) const {
   hit.distance2 = best;
   if (pairs_.empty()) return;
 
@@ -564,7 +621,7 @@ void AabbTree::search(const Vec3& p, Hit& hit, double best, uint32_t skip) const
     bool descend = false;
     if (count > 0) {
       for (uint32_t k = first, end = first + count; k < end; ++k) {
-        if (k == skip) continue;
+        if (skip(k)) continue;
         const Triangle& t = triangles_[k];
         Vec3 q;
         const double d2 = closest_on_triangle(p, points_[t.a], points_[t.b], points_[t.c], q);

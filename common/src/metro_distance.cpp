@@ -247,7 +247,7 @@ MetroReference::MetroReference(const Mesh* reference, const MetroOptions& option
 }
 
 MetroReference::MetroReference(const MetroReference& shared, const MetroOptions& options)
-    : mesh_(shared.mesh_), options_(options), tree_(shared.tree_), diagonal_(shared.diagonal_) {}
+    : mesh_(shared.mesh_), options_(options), tree_(shared.tree_), diagonal_(shared.diagonal_), last_(shared.last_) {}
 
 std::shared_ptr<const SamplePlan> MetroReference::samples_for(size_t count) const {
   std::lock_guard<std::mutex> lock(mutex_);
@@ -259,11 +259,41 @@ std::shared_ptr<const SamplePlan> MetroReference::samples_for(size_t count) cons
   return samples_;
 }
 
+std::shared_ptr<const AabbTree> MetroReference::candidate_tree(const Mesh& candidate) const {
+  LastCandidate& last = *last_;
+  std::shared_ptr<AabbTree> tree;
+  {
+    std::lock_guard<std::mutex> lock(last.mutex);
+    if (last.tree && last.triangles == candidate.triangles) {
+      if (last.positions == candidate.positions) return last.tree;
+      if (last.tree.use_count() == 1) tree = std::move(last.tree);  // no other compare() is reading it
+    }
+    last.tree.reset();
+  }
+  if (tree)
+    tree->refit(candidate);
+  else
+    tree = std::make_shared<AabbTree>(candidate);
+  std::lock_guard<std::mutex> lock(last.mutex);
+  last.triangles = candidate.triangles;
+  last.positions = candidate.positions;
+  last.tree = tree;
+  return tree;
+}
+
+void MetroReference::forget_candidate() const {
+  std::lock_guard<std::mutex> lock(last_->mutex);
+  last_->tree.reset();
+  std::vector<Tri>().swap(last_->triangles);
+  std::vector<Vec3>().swap(last_->positions);
+}
+
 DistanceReport MetroReference::compare(const Mesh& candidate) const {
   require_surface(candidate, "B");
   const size_t count = sample_count(options_, *mesh_, candidate);
   const std::shared_ptr<const SamplePlan> samples_a = samples_for(count);
-  const AabbTree tree_b(candidate);
+  const std::shared_ptr<const AabbTree> tree_ptr = candidate_tree(candidate);
+  const AabbTree& tree_b = *tree_ptr;
   const SamplePlan samples_b(candidate, sampling_options(options_, count));
   std::unique_ptr<Progress> progress;
   if (options_.progress) progress = std::make_unique<Progress>("compare", samples_a->size() + samples_b.size());

@@ -109,6 +109,8 @@ class MetroReference {
   // report's full ones, one copy of a large input instead of two).
   MetroReference(const MetroReference& shared, const MetroOptions& options);
   DistanceReport compare(const Mesh& candidate) const;  // A = reference, B = candidate
+  // Frees the last candidate's tree (candidate_tree below), which the samplings of this mesh share.
+  void forget_candidate() const;
   double diagonal() const { return diagonal_; }
   const Mesh& mesh() const { return *mesh_; }
   const AabbTree& tree() const { return *tree_; }
@@ -117,6 +119,16 @@ class MetroReference {
  private:
   // The samples are not stored (SamplePlan): at Metro's ten per face they took 24 bytes each, 480 a vertex.
   std::shared_ptr<const SamplePlan> samples_for(size_t count) const;
+  // The candidate's tree: the last candidate's again for the same mesh, or refitted (AabbTree::refit) for the same
+  // triangles moved (hcpu7: `prm pack`'s sparse and full-density measurements of one grid or stream, and its
+  // lambda streams). Metro reads distances only, which do not depend on the tree's layout.
+  std::shared_ptr<const AabbTree> candidate_tree(const Mesh& candidate) const;
+  struct LastCandidate {
+    std::mutex mutex;
+    std::vector<Tri> triangles;
+    std::vector<Vec3> positions;
+    std::shared_ptr<AabbTree> tree;
+  };
 
   std::shared_ptr<const Mesh> mesh_;
   MetroOptions options_;
@@ -125,6 +137,7 @@ class MetroReference {
   mutable std::mutex mutex_;
   mutable std::shared_ptr<const SamplePlan> samples_;
   mutable size_t samples_count_ = 0;
+  std::shared_ptr<LastCandidate> last_ = std::make_shared<LastCandidate>();  // shared by the samplings of one mesh
 };
 
 }  // namespace prm
