@@ -588,17 +588,6 @@ bool AabbTree::within(const Vec3& p, double bound2, Hit& hint) const {
 }
 
 void AabbTree::search(const Vec3& p, Hit& hit, double best, uint32_t skip) const {
-  search_if(p, hit, best, [skip](uint32_t k) { return k == skip; });
-}
-
-AabbTree::Hit AabbTree::closest_excluding(const Vec3& p, const std::vector<uint8_t>& excluded, double bound2) const {
-  Hit hit;
-  search_if(p, hit, bound2, [&](uint32_t k) { return ids_[k] < excluded.size() && excluded[ids_[k]]; });
-  return hit;
-}
-
-template <class Skip>
-void AabbTree::search_if(const Vec3& p, Hit& hit, double best, const Skip& skip) const {
   hit.distance2 = best;
   if (pairs_.empty()) return;
 
@@ -621,7 +610,7 @@ void AabbTree::search_if(const Vec3& p, Hit& hit, double best, const Skip& skip)
     bool descend = false;
     if (count > 0) {
       for (uint32_t k = first, end = first + count; k < end; ++k) {
-        if (skip(k)) continue;
+        if (k == skip) continue;
         const Triangle& t = triangles_[k];
         Vec3 q;
         const double d2 = closest_on_triangle(p, points_[t.a], points_[t.b], points_[t.c], q);

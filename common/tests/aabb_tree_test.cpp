@@ -76,37 +76,6 @@ TEST(AabbTree, MatchesBruteForceOnATriangleSoup) {
   }
 }
 
-// closest_excluding: the answer of a tree built on the triangles not excluded (distance and point bit for bit, the
-// face mapped back), for a third of a soup's triangles excluded; nothing left: not found.
-TEST(AabbTree, ClosestExcludingIsTheTreeOfTheOthers) {
-  const Mesh soup = test::random_soup(3000, 5);
-  const AabbTree tree(soup);
-  std::vector<uint8_t> excluded(soup.triangles.size(), 0);
-  Mesh rest;
-  rest.positions = soup.positions;
-  std::vector<uint32_t> rest_face;
-  for (uint32_t f = 0; f < soup.triangles.size(); ++f) {
-    excluded[f] = f % 3 == 1;
-    if (!excluded[f]) rest.triangles.push_back(soup.triangles[f]), rest_face.push_back(f);
-  }
-  const AabbTree rest_tree(rest);
-  std::mt19937_64 rng(13);
-  std::uniform_real_distribution<double> u(-0.5, 1.5);
-  size_t nearer_excluded = 0;
-  for (int i = 0; i < 2000; ++i) {
-    const Vec3 p{u(rng), u(rng), u(rng)};
-    const AabbTree::Hit hit = tree.closest_excluding(p, excluded);
-    const AabbTree::Hit expected = rest_tree.closest(p);
-    ASSERT_TRUE(hit.found());
-    ASSERT_EQ(hit.distance2, expected.distance2) << "query " << i;
-    EXPECT_EQ(hit.point, expected.point);
-    EXPECT_FALSE(excluded[hit.face]);
-    nearer_excluded += tree.closest(p).distance2 < hit.distance2;
-  }
-  EXPECT_GT(nearer_excluded, 500u);  // the excluded triangles were the nearest for many queries
-  EXPECT_FALSE(tree.closest_excluding({0.5, 0.5, 0.5}, std::vector<uint8_t>(soup.triangles.size(), 1)).found());
-}
-
 // refit: a tree built on a soup, its corners then moved (each by up to a tenth of the soup), answers with the
 // distances of a tree built on the moved soup, bit for bit, hinted or not; a mesh with other triangles is refused.
 TEST(AabbTree, RefitGivesTheDistancesOfANewTree) {

@@ -856,8 +856,7 @@ bool descend_vertex(Mesh& m, const std::vector<std::vector<uint32_t>>& vertex_fa
 // answer with the dense probes, or each query alone without them, as the first refinement did (a hint may pick
 // another face where two are as close, e.g. at an edge, and that face is the one split). Kept in (worst, worst_point)
 // if it is the farthest yet.
-template <class Tree>
-void probe_worst(Tree&& tree, const Vec3& x, bool hinted, AabbTree::Hit& hint, AabbTree::Hit& worst,
+void probe_worst(const AabbTree& tree, const Vec3& x, bool hinted, AabbTree::Hit& hint, AabbTree::Hit& worst,
                  Vec3& worst_point) {
   if (hinted) {
     tree.closest(x, hint);
@@ -1266,67 +1265,6 @@ size_t prune_inserted(Mesh& m, const QuantFrame& frame, size_t first_inserted, c
   return count;
 }
 
-// A later round's closest points on its mesh m without building m's tree (hcpu7: the venus at 1.3e-4 built it in
-// each of its 12 rounds, 0.43 s CPU of its 1.9 s refinement, for the few input points measured again there):
-// `first`, the tree of the first round's mesh `first_mesh`, for the faces of m that are as they were there (the same
-// corners at the same places), and a tree of the others. The same distances and points as m's tree; where two faces
-// are as near, the face may be another (m's tree keeps the first it meets, a layout of its own): the first tree's
-// face, then the hint's as AabbTree::closest keeps it.
-class LaterRoundQueries {
- public:
-  LaterRoundQueries(const AabbTree& first, const Mesh& first_mesh, const Mesh& m)
-      : first_(first), changed_(m.triangles.size(), 0), local_(m.triangles.size(), AabbTree::kNoFace) {
-    std::vector<Tri> changed;
-    for (uint32_t f = 0; f < m.triangles.size(); ++f) {
-      bool same = f < first_mesh.triangles.size() && m.triangles[f] == first_mesh.triangles[f];
-      for (size_t k = 0; k < 3 && same; ++k) {
-        const uint32_t v = m.triangles[f][k];
-        same = v < first_mesh.positions.size() && m.positions[v] == first_mesh.positions[v];
-      }
-      if (same) continue;
-      changed_[f] = 1;
-      local_[f] = static_cast<uint32_t>(ids_.size());
-      ids_.push_back(f);
-      changed.push_back(m.triangles[f]);
-    }
-    changed_tree_ = AabbTree(m.positions, changed);
-  }
-  AabbTree::Hit closest(const Vec3& x) const {
-    AabbTree::Hit b = changed_tree_.closest(x);
-    // The first tree's faces only as near as b or nearer (a search bounded from the start; on a tie, its face).
-    const AabbTree::Hit a =
-        first_.closest_excluding(x, changed_, b.found() ? std::nextafter(b.distance2, HUGE_VAL) : HUGE_VAL);
-    if (a.found()) return a;
-    if (b.found()) b.face = ids_[b.face];
-    return b;
-  }
-  // As AabbTree::closest(x, hint).
-  void closest(const Vec3& x, AabbTree::Hit& hint) const {
-    const AabbTree::Hit w = closest(x);
-    if (hint.found() && hint.face < changed_.size()) {
-      const AabbTree::Hit h = on_face(x, hint.face);
-      if (h.distance2 <= w.distance2) {
-        hint = h;
-        return;
-      }
-    }
-    hint = w;
-  }
-
- private:
-  AabbTree::Hit on_face(const Vec3& x, uint32_t f) const {
-    if (!changed_[f]) return first_.on_face(x, f);
-    AabbTree::Hit h = changed_tree_.on_face(x, local_[f]);
-    h.face = f;
-    return h;
-  }
-  const AabbTree& first_;
-  std::vector<uint8_t> changed_;  // per face of m: not as it was in first_mesh
-  std::vector<uint32_t> local_;   // face of m -> its index in changed_tree_
-  std::vector<uint32_t> ids_;     // the inverse
-  AabbTree changed_tree_;
-};
-
 }  // namespace
 
 size_t prune_inserted_vertices(PrmMesh& prm, size_t first_inserted, const Mesh& input, const AabbTree& input_tree,
@@ -1395,7 +1333,7 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
   Mesh first_mesh;
   Mesh measured_mesh;  // the mesh the last round measured (with all_input_faces): its changed faces as they were
   std::vector<uint8_t> quiet_face;
-  const auto probe_input_face = [&](auto&& on, uint32_t f) {
+  const auto probe_input_face = [&](const AabbTree& on, uint32_t f) {
     const Tri& t = input.triangles[f];
     const Vec3 &a = input.positions[t[0]], &b = input.positions[t[1]], &c = input.positions[t[2]];
     AabbTree::Hit hint;
@@ -1415,20 +1353,14 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
     // the bound or closest to a face the last round changed are measured again: the others' distance can only have
     // shrunk (the faces that did not change are where they were), and is read only against that share and the
     // bound, so the figures are those of measuring all.
-    // After the first round (with all_input_faces): LaterRoundQueries instead of the mesh's tree.
-    std::unique_ptr<AabbTree> round_tree;
-    std::unique_ptr<LaterRoundQueries> later;
-    if (st.rounds > 1 && first_tree)
-      later = std::make_unique<LaterRoundQueries>(*first_tree, first_mesh, m);
-    else
-      round_tree = std::make_unique<AabbTree>(m);
+    auto round_tree = std::make_unique<AabbTree>(m);
+    const AabbTree& tree = *round_tree;
     const double share2 = kFaceProbeShare * kFaceProbeShare * bound2;
     hits.resize(input.positions.size());
     tbb::parallel_for(size_t{0}, input.positions.size(), [&](size_t v) {
       if (!used[v]) return;
       const AabbTree::Hit& old = hits[v];
-      if (st.rounds == 1 || !old.found() || old.distance2 > share2 || stale[old.face])
-        hits[v] = later ? later->closest(input.positions[v]) : round_tree->closest(input.positions[v]);
+      if (st.rounds == 1 || !old.found() || old.distance2 > share2 || stale[old.face]) hits[v] = tree.closest(input.positions[v]);
     });
     std::vector<Deviation> far;
     for (uint32_t v = 0; v < hits.size(); ++v)
@@ -1534,16 +1466,13 @@ DeviationRefinementStats refine_deviations(PrmMesh& prm, const Mesh& input, cons
         if (!quiet_face.empty()) quiet_face[f] = 0;
         if (first_quiet) {
           const Tri& t = input.triangles[f];
-          if (quiet_probes(*round_tree, input.positions[t[0]], input.positions[t[1]], input.positions[t[2]],
+          if (quiet_probes(tree, input.positions[t[0]], input.positions[t[1]], input.positions[t[2]],
                            options.max_deviation, share2, input_face_hit[f])) {
             quiet_face[f] = 1;
             return;
           }
         }
-        if (later)
-          probe_input_face(*later, f);
-        else
-          probe_input_face(*round_tree, f);
+        probe_input_face(tree, f);
       });
       if (first_quiet) {
         first_mesh = m;

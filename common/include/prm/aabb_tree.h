@@ -61,10 +61,6 @@ class AabbTree {
   bool well_inside(const Vec3& p, uint32_t face) const;
   Hit on_face(const Vec3& p, uint32_t face) const;
   void closest_reusing(const Vec3& p, Hit& hint) const;
-  // The closest point of the triangles not flagged in `excluded` (indexed by the mesh's triangle; those past its end
-  // are not excluded), as closest(p, bound2) finds it among them.
-  Hit closest_excluding(const Vec3& p, const std::vector<uint8_t>& excluded,
-                        double bound2 = std::numeric_limits<double>::infinity()) const;
 
   // The same triangles (mesh.triangles as built) with their corners moved to mesh.positions: the boxes fitted again
   // in place, the layout kept. Queries give the distances a new tree gives, bit for bit (on a tie, maybe another
@@ -104,9 +100,6 @@ class AabbTree {
   // in triangles_, or kNoFace) is not tested: the hinted query has tested it already, and its distance, best2, could
   // not be beaten by itself.
   void search(const Vec3& p, Hit& hit, double best2, uint32_t skip = kNoFace) const;
-  // search() without the slots for which skip(slot) is true.
-  template <class Skip>
-  void search_if(const Vec3& p, Hit& hit, double best2, const Skip& skip) const;
 
   std::vector<NodePair> pairs_;
   std::vector<Triangle> triangles_;  // in leaf order
