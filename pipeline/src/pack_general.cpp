@@ -112,6 +112,12 @@ GeneralPack encode_at(const Mesh& input, const MetroReference& reference, const 
 
 GeneralPack pack_general(const Mesh& input, const MetroReference& reference, double target, int bits,
                          int max_minor, double max_target) {
+  // The depths' decoded meshes share their triangles: Metro refits one candidate tree across them (MetroReference);
+  // freed when the depth is chosen, so that the input-sized tree does not stay through the piecewise regular search.
+  struct ForgetCandidate {
+    const MetroReference& reference;
+    ~ForgetCandidate() { reference.forget_candidate(); }
+  } forget_candidate{reference};
   // A bit depth is decided without Metro when its decoded mesh has a zero-area triangle (it cannot meet the target)
   // or when the displacement bound is within the target and the bound (it meets it: Metro's RMS and maximum are at
   // most the bound); the depth kept is measured in any case (its distances are reported). Every decision is the one
