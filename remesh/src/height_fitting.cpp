@@ -72,8 +72,7 @@ HeightFitStats fit_heights(PrmMesh& prm, const Mesh& input, const AabbTree& tree
     const uint32_t known = options.reuse_faces ? sample_face[std::size(kSamples) * f] : AabbTree::kNoFace;
     if (known != AabbTree::kNoFace && tree.well_inside(centroid, known)) {
       if (nearest) (*nearest)[f] = known;
-      const Tri& s = input.triangles[known];
-      return !(dot(n2, triangle_normal_area2(input.positions[s[0]], input.positions[s[1]], input.positions[s[2]])) > 0);
+      return !faces_surface_face(n2, input, known);
     }
     return !faces_surface(n2, centroid, input, tree, nearest ? &(*nearest)[f] : nullptr);
   };

@@ -11,15 +11,19 @@
 
 namespace prm {
 
+// The test against a known face of the surface (the closest to the centroid): the normals under 90 degrees apart.
+inline bool faces_surface_face(const Vec3& normal, const Mesh& surface, uint32_t face) {
+  const Tri& s = surface.triangles[face];
+  return dot(normal, triangle_normal_area2(surface.positions[s[0]], surface.positions[s[1]], surface.positions[s[2]])) > 0;
+}
+
 // normal: the triangle's (any length, e.g. triangle_normal_area2); centroid: its centroid. tree: surface's tree.
 // True when the surface has no face to compare with. `nearest`: when given, set to tree.closest(centroid).face.
 inline bool faces_surface(const Vec3& normal, const Vec3& centroid, const Mesh& surface, const AabbTree& tree,
                           uint32_t* nearest = nullptr) {
   const AabbTree::Hit hit = tree.closest(centroid);
   if (nearest) *nearest = hit.face;
-  if (!hit.found()) return true;
-  const Tri& s = surface.triangles[hit.face];
-  return dot(normal, triangle_normal_area2(surface.positions[s[0]], surface.positions[s[1]], surface.positions[s[2]])) > 0;
+  return !hit.found() || faces_surface_face(normal, surface, hit.face);
 }
 
 inline bool faces_surface(const Vec3& a, const Vec3& b, const Vec3& c, const Mesh& surface, const AabbTree& tree) {
